@@ -1,0 +1,322 @@
+"""Closed-form inverse kinematics of the arm (report eqs. 10–34, corrected).
+
+A target is a tool point, a tool pitch and optionally a wrist roll. For every
+target four candidates are computed at once, without a Python loop per target:
+
+====  ===========================  =======================================
+slot  base angle q1                elbow branch
+====  ===========================  =======================================
+0     ``atan2(y, x)`` folded       q3 <= 0 (the arm's "elbow up" branch)
+1     same                         q3 >= 0
+2     the other side, ``+pi``      q3 <= 0
+3     the other side, ``+pi``      q3 >= 0
+====  ===========================  =======================================
+
+"Folded" means that a base angle outside the joint range is turned by pi and
+the reach in the arm's vertical plane changes sign: the arm then leans back
+over its base, which is how it reaches targets behind the base's plane (x < 0).
+Candidates on the other side describe the same physical tool direction, so
+their pitch, which is measured towards the direction q1 points, is
+``pi - pitch``. Candidates outside the joint ranges are discarded; the outcome
+of each target is an :class:`IKStatus`.
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.errors import (
+    InvalidInputError,
+    JointRangeError,
+    NonFiniteInputError,
+    OutOfReachError,
+)
+
+__all__ = ["IKResult", "IKStatus", "ik", "ik_one", "wrap_angle"]
+
+FloatArray = npt.NDArray[np.float64]
+
+_TAU = 2.0 * np.pi
+
+LIMIT_TOL = 1e-7
+"""Slack allowed on joint limits [rad] and on the reach test (on cos q3) [-].
+
+At a stretched or folded elbow (sin q3 = 0) the closed form loses half the
+digits: a rounding of 1e-16 in cos q3 moves q3, and so q4, by ~1e-8 rad. The
+slack keeps such poses on the joint limits solvable; it is 6e-6 degrees.
+"""
+
+
+class IKStatus(enum.IntEnum):
+    """Outcome of the inverse kinematics for one target."""
+
+    OK = 0
+    OUT_OF_REACH = 1
+    JOINT_RANGE = 2
+    NOT_FINITE = 3
+
+
+def wrap_angle(angle: npt.ArrayLike) -> FloatArray:
+    """Wrap angles into [-pi, pi] [rad] (a new array; exact for |angle| < 1e15)."""
+    a = np.asarray(angle, dtype=float)
+    out = a * (1.0 / _TAU)
+    np.rint(out, out=out)
+    out *= -_TAU
+    out += a
+    return out
+
+
+@dataclass(frozen=True)
+class IKResult:
+    """Solutions of a batch of IK targets, batch shape ``B``.
+
+    Attributes:
+        q: Selected solution, shape B + (5,) [rad], inside the joint ranges to
+            ``LIMIT_TOL``; NaN where ``status`` is not OK.
+        status: :class:`IKStatus` codes, shape B, int8.
+        joint: 1-based joint that blocks a JOINT_RANGE target (the least
+            violated candidate's worst joint), else 0; shape B, int8.
+        violation: How far that joint is out of its range, shape B [rad].
+        candidates: The four geometric candidates, shape B + (4, 5) [rad]
+            (NaN where the target is out of reach or not finite).
+        valid: Which candidates are in reach and within the joint ranges,
+            shape B + (4,).
+        reach_m: Upper-arm and forearm lengths used [m] (for messages).
+    """
+
+    q: FloatArray
+    status: npt.NDArray[np.int8]
+    joint: npt.NDArray[np.int8]
+    violation: FloatArray
+    candidates: FloatArray
+    valid: npt.NDArray[np.bool_]
+    reach_m: tuple[float, float] = (LYNX_ARM.upper_arm, LYNX_ARM.forearm)
+
+    @property
+    def ok(self) -> npt.NDArray[np.bool_]:
+        """Mask of targets with a solution, shape B."""
+        ok: npt.NDArray[np.bool_] = self.status == IKStatus.OK
+        return ok
+
+    def reason(self, index: tuple[int, ...] | int = ()) -> str:
+        """Human-readable outcome of one target."""
+        status = IKStatus(int(self.status[index]))
+        if status is IKStatus.OK:
+            return "solved"
+        if status is IKStatus.NOT_FINITE:
+            return "target is not finite (NaN or infinity)"
+        if status is IKStatus.OUT_OF_REACH:
+            lo = abs(self.reach_m[0] - self.reach_m[1]) * 1e3
+            hi = (self.reach_m[0] + self.reach_m[1]) * 1e3
+            return (
+                "wrist point out of the arm's reach (the upper arm and forearm reach "
+                f"{lo:.0f} to {hi:.0f} mm from the shoulder)"
+            )
+        j = int(self.joint[index])
+        return (
+            f"joint {j} out of range by {np.degrees(self.violation[index]):.2f} deg "
+            "in every solution"
+        )
+
+    def raise_for_status(self, index: tuple[int, ...] | int = (), context: str = "") -> None:
+        """Raise the typed error matching one target's outcome, if any.
+
+        Args:
+            index: Which target of the batch.
+            context: Prefix naming the target in the message (e.g. the pose).
+
+        Raises:
+            NonFiniteInputError, OutOfReachError, JointRangeError.
+        """
+        status = IKStatus(int(self.status[index]))
+        message = f"{context}: {self.reason(index)}" if context else self.reason(index)
+        if status is IKStatus.NOT_FINITE:
+            raise NonFiniteInputError(message)
+        if status is IKStatus.OUT_OF_REACH:
+            raise OutOfReachError(message)
+        if status is IKStatus.JOINT_RANGE:
+            raise JointRangeError(message, joint=int(self.joint[index]))
+
+
+def _range_violation(q: FloatArray, geometry: ArmGeometry) -> FloatArray:
+    """Per-joint distance outside the joint range, shape of ``q`` [rad]."""
+    return np.maximum(geometry.lower - q, 0.0) + np.maximum(q - geometry.upper, 0.0)
+
+
+def ik(
+    position: npt.ArrayLike,
+    pitch: npt.ArrayLike,
+    roll: npt.ArrayLike | None = None,
+    *,
+    q_ref: npt.ArrayLike | None = None,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> IKResult:
+    """Solve the inverse kinematics for a batch of tool targets.
+
+    Args:
+        position: Tool points in the base frame, shape B + (3,) [m].
+        pitch: Tool pitch above the horizontal, towards the target's side of the
+            base (see :func:`~lynxsim.arm.fk.tool_pose`), shape B or broadcastable [rad].
+        roll: Wrist roll ``q5``, shape B or broadcastable [rad]; wrapped into
+            [0, 2 pi). Default: 0, or ``q_ref``'s roll when given.
+        q_ref: Reference joints, shape B + (5,) or (5,) [rad]. When given, the
+            valid candidate closest to it is selected (continuity along paths);
+            otherwise the first valid slot in the order of the module table.
+        geometry: The arm description.
+
+    Returns:
+        The :class:`IKResult`.
+
+    Raises:
+        InvalidInputError: If the arrays do not broadcast to a batch of targets.
+    """
+    p = np.asarray(position, dtype=float)
+    if p.ndim == 0 or p.shape[-1] != 3:
+        raise InvalidInputError(f"position must have shape (..., 3), got {p.shape}")
+    ref = None if q_ref is None else np.asarray(q_ref, dtype=float)
+    if ref is not None and (ref.ndim == 0 or ref.shape[-1] != 5):
+        raise InvalidInputError(f"q_ref must have shape (..., 5), got {ref.shape}")
+    if roll is None:
+        roll = 0.0 if ref is None else ref[..., 4]
+    try:
+        batch = np.broadcast_shapes(p.shape[:-1], np.shape(pitch), np.shape(roll))
+        if ref is not None:
+            batch = np.broadcast_shapes(batch, ref.shape[:-1])
+    except ValueError as exc:
+        raise InvalidInputError(f"IK inputs do not broadcast: {exc}") from None
+    n = int(np.prod(batch, dtype=int))
+    p = np.broadcast_to(p, batch + (3,)).reshape(n, 3)
+    phi = np.broadcast_to(np.asarray(pitch, dtype=float), batch).reshape(n)
+    q5 = np.broadcast_to(np.asarray(roll, dtype=float), batch).reshape(n)
+
+    finite = np.isfinite(p).all(axis=-1) & np.isfinite(phi) & np.isfinite(q5)
+    if not finite.all():
+        p = np.where(finite[:, None], p, 0.0)
+        phi = np.where(finite, phi, 0.0)
+    q5 = np.where(finite, np.mod(q5, 2 * np.pi), 0.0)
+    x, y, z = p[:, 0], p[:, 1], p[:, 2]
+
+    # Side 0 folds q1 into (-pi/2, pi/2]; side 1 turns it by pi. On side 1 the
+    # reach changes sign and the pitch becomes pi - pitch, so the wrist point's
+    # in-plane coordinates are (-r_w, z_w): the same distance from the shoulder
+    # (one reach test for both sides) and base angle pi - A.
+    rho = np.hypot(x, y)
+    heading = np.arctan2(y, x)
+    heading[rho == 0.0] = 0.0
+    folded = np.abs(heading) > np.pi / 2
+    q1_side0 = np.where(folded, wrap_angle(heading + np.pi), heading)
+    q1_side1 = wrap_angle(q1_side0 + np.pi)
+    reach = np.where(folded, -rho, rho)
+
+    l2, l3, lt = geometry.upper_arm, geometry.forearm, geometry.tool_length
+    r_w = reach - lt * np.cos(phi)
+    z_w = z - geometry.shoulder_height - lt * np.sin(phi)
+    c3 = (r_w**2 + z_w**2 - l2**2 - l3**2) / (2 * l2 * l3)
+    in_reach = finite & (np.abs(c3) <= 1.0 + LIMIT_TOL)
+    np.clip(c3, -1.0, 1.0, out=c3)
+    s3 = np.sqrt(1.0 - c3**2)
+    gamma = np.arctan2(s3, c3)  # |q3|, [0, pi]
+    beta = np.arctan2(l3 * s3, l2 + l3 * c3)  # shoulder correction, >= 0
+    base = np.arctan2(z_w, r_w)  # side 0; side 1 is pi - base
+    # Slots (side, elbow): (0, q3<=0), (0, q3>=0), (1, q3<=0), (1, q3>=0).
+    # Joint-major layout (5 joints, 4 slots, n targets) keeps every row contiguous.
+    cand = np.empty((5, 4, n))
+    cand[0, 0:2] = q1_side0
+    cand[0, 2:4] = q1_side1
+    q2, q3, q4 = cand[1], cand[2], cand[3]
+    np.add(base, beta, out=q2[0])
+    np.subtract(base, beta, out=q2[1])
+    np.subtract(np.pi, q2[1], out=q2[2])
+    np.subtract(np.pi, q2[0], out=q2[3])
+    np.negative(gamma, out=q3[0])
+    q3[1] = gamma
+    q3[2] = q3[0]
+    q3[3] = gamma
+    q4[0:2] = phi
+    np.subtract(np.pi, phi, out=q4[2])
+    q4[3] = q4[2]
+    q4 -= q2
+    q4 -= q3
+    cand[1:4] = wrap_angle(cand[1:4])
+    cand[4] = q5
+
+    lo = (geometry.lower - LIMIT_TOL)[:, None, None]
+    hi = (geometry.upper + LIMIT_TOL)[:, None, None]
+    valid = ((cand >= lo) & (cand <= hi)).all(axis=0)  # (4, n)
+    valid &= in_reach
+    any_valid = valid.any(axis=0)
+    if ref is None:
+        best = np.argmax(valid, axis=0)
+    else:
+        ref_flat = np.broadcast_to(ref, batch + (5,)).reshape(n, 5).T[:, None, :]
+        score = np.linalg.norm(wrap_angle(cand - ref_flat), axis=0)
+        best = np.argmin(np.where(valid, score, np.inf), axis=0)
+    cand[:, :, ~in_reach] = np.nan
+    # Not clipped onto the limits: a solution may lie up to LIMIT_TOL outside a
+    # range, which keeps the tool exactly on the target (clipping would not).
+    q = cand[:, best, np.arange(n)].T
+    q[~any_valid] = np.nan
+    cand_view = np.moveaxis(cand, (0, 1), (2, 1)).reshape(batch + (4, 5))  # a view
+
+    status = np.select(
+        [~finite, ~in_reach, ~any_valid],
+        [IKStatus.NOT_FINITE, IKStatus.OUT_OF_REACH, IKStatus.JOINT_RANGE],
+        IKStatus.OK,
+    ).astype(np.int8)
+    joint = np.zeros(n, dtype=np.int8)
+    amount = np.zeros(n)
+    blocked = np.flatnonzero(status == IKStatus.JOINT_RANGE)
+    if blocked.size:
+        v = _range_violation(np.moveaxis(cand[:, :, blocked], 2, 0).swapaxes(1, 2), geometry)
+        least = np.argmin(v.max(axis=-1), axis=-1)
+        v_least = v[np.arange(blocked.size), least]
+        joint[blocked] = np.argmax(v_least, axis=-1) + 1
+        amount[blocked] = v_least.max(axis=-1)
+    return IKResult(
+        q=q.reshape(batch + (5,)),
+        status=status.reshape(batch),
+        joint=joint.reshape(batch),
+        violation=amount.reshape(batch),
+        candidates=cand_view,
+        valid=valid.T.reshape(batch + (4,)),
+        reach_m=(l2, l3),
+    )
+
+
+def ik_one(
+    position: npt.ArrayLike,
+    pitch: float,
+    roll: float | None = None,
+    *,
+    q_ref: npt.ArrayLike | None = None,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> FloatArray:
+    """Solve one target or raise.
+
+    Args:
+        position: Tool point, shape (3,) [m].
+        pitch: Tool pitch [rad].
+        roll: Wrist roll [rad] (default 0, or ``q_ref``'s).
+        q_ref: Reference joints, shape (5,) [rad], to pick among solutions.
+        geometry: The arm description.
+
+    Returns:
+        Joint angles, shape (5,) [rad].
+
+    Raises:
+        NonFiniteInputError: A coordinate is NaN or infinite.
+        OutOfReachError: The wrist point is outside the links' reach.
+        JointRangeError: Every solution violates a joint range (names the joint).
+        InvalidInputError: ``position`` is not a 3-vector.
+    """
+    p = np.asarray(position, dtype=float)
+    if p.shape != (3,):
+        raise InvalidInputError(f"position must have shape (3,), got {p.shape}")
+    result = ik(p, pitch, roll, q_ref=q_ref, geometry=geometry)
+    result.raise_for_status()
+    return result.q

@@ -1,0 +1,56 @@
+"""The ``lynxsim`` command line: parses arguments and calls the library.
+
+Each sub-command lives in its own module exposing ``register(subparsers)``;
+the handler it sets returns the process exit code. Errors the user can cause
+(any :class:`~lynxsim.errors.LynxsimError`, bad files) print one line on
+stderr and exit non-zero, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from typing import NoReturn
+
+from lynxsim.cli import arm, demo
+from lynxsim.errors import LynxsimError
+
+__all__ = ["main"]
+
+EXIT_USAGE = 2
+EXIT_ERROR = 1
+
+
+class _OneLineParser(argparse.ArgumentParser):
+    """Argument parser whose errors are one line, not usage plus message."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The full argument parser with every sub-command."""
+    parser = _OneLineParser(
+        prog="lynxsim",
+        description="Simulate the report's Lynxmotion arm and 3-RRR robot. "
+        "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
+    )
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_OneLineParser)
+    for module in (arm, demo):
+        module.register(sub)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit code."""
+    args = build_parser().parse_args(argv)
+    try:
+        code: int = args.handler(args)
+    except (LynxsimError, OSError) as exc:
+        print(f"lynxsim: error: {exc}", file=sys.stderr)
+        return EXIT_ERROR
+    except KeyboardInterrupt:
+        print("lynxsim: interrupted", file=sys.stderr)
+        return 130
+    return code

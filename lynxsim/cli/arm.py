@@ -1,0 +1,168 @@
+"""``lynxsim fk | ik | workspace``: the arm's kinematics at the command line.
+
+Lengths in mm and angles in degrees unless ``--si`` is given (m, rad).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+
+from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
+from lynxsim.errors import InvalidInputError
+
+__all__ = ["register"]
+
+
+class Units:
+    """Conversion between SI and the units shown at the command line."""
+
+    def __init__(self, si: bool) -> None:
+        self.si = si
+        self.length = "m" if si else "mm"
+        self.angle = "rad" if si else "deg"
+
+    def length_in(self, v: float) -> float:
+        return v if self.si else v * 1e-3
+
+    def angle_in(self, v: float) -> float:
+        return v if self.si else math.radians(v)
+
+    def length_out(self, v: np.ndarray) -> list[float]:
+        return np.round(np.asarray(v) * (1.0 if self.si else 1e3), 9).tolist()
+
+    def angle_out(self, v: np.ndarray) -> list[float]:
+        return np.round(np.asarray(v) if self.si else np.degrees(v), 9).tolist()
+
+
+def _add_units(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--si", action="store_true", help="inputs and outputs in m and rad instead of mm and deg"
+    )
+    p.add_argument("--json", action="store_true", help="machine-readable output, units labelled")
+
+
+def _finite(values: list[float], what: str) -> None:
+    if not all(math.isfinite(v) for v in values):
+        raise InvalidInputError(f"{what} must be finite numbers, got {values}")
+
+
+def _fk(args: argparse.Namespace) -> int:
+    u = Units(args.si)
+    _finite(args.q, "joint angles")
+    q = np.array([u.angle_in(v) for v in args.q])
+    pose = tool_pose(q)
+    origins = frame_origins(q)
+    out = {
+        "units": {"length": u.length, "angle": u.angle},
+        "q": u.angle_out(q),
+        "tool_position": u.length_out(pose.position),
+        "pitch": u.angle_out(pose.pitch),
+        "roll": u.angle_out(pose.roll),
+        "frame_origins": {name: u.length_out(o) for name, o in zip(FRAME_NAMES, origins)},
+    }
+    if args.json:
+        print(json.dumps(out, indent=2))
+        return 0
+    x, y, z = out["tool_position"]
+    print(
+        f"tool  x {x:10.2f}  y {y:10.2f}  z {z:10.2f} {u.length}   "
+        f"pitch {out['pitch']:8.2f} {u.angle}   roll {out['roll']:8.2f} {u.angle}"
+    )
+    for name, o in out["frame_origins"].items():
+        print(f"  {name:7s} {o[0]:10.2f} {o[1]:10.2f} {o[2]:10.2f} {u.length}")
+    return 0
+
+
+def _ik(args: argparse.Namespace) -> int:
+    u = Units(args.si)
+    values = [args.x, args.y, args.z, args.pitch] + ([args.roll] if args.roll is not None else [])
+    _finite(values, "target")
+    p = np.array([u.length_in(v) for v in (args.x, args.y, args.z)])
+    roll = None if args.roll is None else u.angle_in(args.roll)
+    result = ik(p, u.angle_in(args.pitch), roll)
+    if not result.ok:
+        target = ", ".join(f"{v:g}" for v in values)
+        result.raise_for_status(
+            context=f"no solution for target ({target}) [{u.length}, {u.angle}]"
+        )
+    if args.json:
+        out = {
+            "units": {"angle": u.angle},
+            "q": u.angle_out(result.q),
+            "candidates": [
+                {"q": u.angle_out(c), "valid": bool(v)}
+                for c, v in zip(result.candidates, result.valid)
+            ],
+        }
+        print(json.dumps(out, indent=2))
+        return 0
+    q = u.angle_out(result.q)
+    print("q1..q5 [" + u.angle + "]: " + "  ".join(f"{v:.2f}" for v in q))
+    n_valid = int(result.valid.sum())
+    if n_valid > 1:
+        print(f"({n_valid} valid solutions; --json lists them all)")
+    return 0
+
+
+def _workspace(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from lynxsim.plots.arm_workspace import plot_arm_workspace
+
+    if args.samples <= 0:
+        raise InvalidInputError(f"--samples must be positive, got {args.samples}")
+    rng = np.random.default_rng(args.seed)
+    with tqdm(total=args.samples, unit="q", disable=args.quiet) as bar:
+        samples = sample_workspace(
+            args.samples, rng, progress=lambda done, n: bar.update(done - bar.n)
+        )
+    plot_arm_workspace(samples, args.out)
+    p = samples.position * 1e3
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    extent = ", ".join(f"{a} [{lo[i]:.0f}, {hi[i]:.0f}]" for i, a in enumerate("xyz"))
+    print(
+        f"wrote {args.out}: {args.samples:,} samples, {extent} mm, "
+        f"{(p[:, 0] < 0).mean():.1%} behind the base plane (x < 0)"
+    )
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the ``fk``, ``ik`` and ``workspace`` sub-commands."""
+    p = sub.add_parser(
+        "fk",
+        help="tool pose from joint angles (deg by default)",
+        description="Forward kinematics. Angles in degrees, output in mm "
+        "and degrees, unless --si (rad in, m and rad out).",
+    )
+    p.add_argument("q", type=float, nargs=5, metavar=("Q1", "Q2", "Q3", "Q4", "Q5"))
+    _add_units(p)
+    p.set_defaults(handler=_fk)
+
+    p = sub.add_parser(
+        "ik",
+        help="joint angles for a tool target (mm, deg by default)",
+        description="Inverse kinematics of a tool point X Y Z [mm], pitch "
+        "[deg] and optional roll q5 [deg]; --si for m and rad.",
+    )
+    for name in ("x", "y", "z", "pitch"):
+        p.add_argument(name, type=float, metavar=name.upper())
+    p.add_argument("roll", type=float, nargs="?", default=None, metavar="ROLL")
+    _add_units(p)
+    p.set_defaults(handler=_ik)
+
+    p = sub.add_parser(
+        "workspace",
+        help="plot the reachable workspace (PNG)",
+        description="Sample the joint ranges uniformly and plot the tool points.",
+    )
+    p.add_argument("--out", type=Path, default=Path("workspace.png"), help="PNG file to write")
+    p.add_argument("--samples", type=int, default=1_000_000, help="joint samples (default 10^6)")
+    p.add_argument("--seed", type=int, default=0, help="random seed")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(handler=_workspace)

@@ -1,0 +1,55 @@
+"""``lynxsim demo``: the main job, reproducing the report in simulation."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+import numpy as np
+
+from lynxsim.arm import frame_origins, ik, tool_pose
+from lynxsim.reference import FK_CASES, TABLE4
+
+__all__ = ["register"]
+
+
+def _kinematics_tables() -> None:
+    print("Forward kinematics (report Figures 4 and 7)")
+    print(f"{'q1..q5 [deg]':44s} {'x, y, z [mm] (report)':36s} {'lynxsim':26s} pitch")
+    for case in FK_CASES:
+        pose = tool_pose(np.radians(case.q_deg))
+        p = pose.position * 1e3
+        qs = ", ".join(f"{v:g}" for v in case.q_deg)
+        ref = ", ".join(f"{v:.2f}" for v in case.position_mm)
+        got = ", ".join(f"{v:.2f}" for v in p)
+        print(
+            f"{qs:44s} {ref:36s} {got:26s} {math.degrees(pose.pitch):.2f} "
+            f"(report {case.pitch_deg:.2f})"
+        )
+    print()
+    print("Inverse kinematics of the pick-and-place poses (report Table 4, errata applied)")
+    print(f"{'pose':5s} {'x, y, z [mm], pitch [deg]':30s} {'q1..q4 report [deg]':32s} lynxsim")
+    for row in TABLE4:
+        r = ik(np.array(row.position_mm) * 1e-3, math.radians(row.pitch_deg))
+        r.raise_for_status()
+        target = ", ".join(f"{v:g}" for v in (*row.position_mm, row.pitch_deg))
+        ref = ", ".join(f"{v:.2f}" for v in row.q_deg)
+        got = ", ".join(f"{v:.2f}" for v in np.degrees(r.q[:4]))
+        print(f"{row.name:5s} {target:30s} {ref:32s} {got}")
+    origins = frame_origins(ik(np.array(TABLE4[0].position_mm) * 1e-3, math.radians(-90.0)).q) * 1e3
+    print(
+        f"P1 elbow origin {np.round(origins[3], 2).tolist()} mm, "
+        f"wrist origin {np.round(origins[4], 2).tolist()} mm "
+        "(report (0, 147.16, 104.89), (0, 300, 98))"
+    )
+
+
+def _demo(args: argparse.Namespace) -> int:
+    _kinematics_tables()
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the ``demo`` sub-command."""
+    p = sub.add_parser("demo", help="run the main job: reproduce the report in simulation")
+    p.set_defaults(handler=_demo)

@@ -1,0 +1,1 @@
+"""Matplotlib figures (PNG) of lynxsim's results; the Agg backend, no display."""

@@ -1,0 +1,1 @@
+"""MJCF models shipped with lynxsim (the repository's top-level models/ folder)."""
