@@ -54,7 +54,9 @@ def main() -> None:
     print(f"batch of {N_BATCH:,} targets (best of {REPEATS}); loop over {N_LOOP:,} targets")
     print(f"{'':28s} {'batch [1/s]':>14s} {'loop [1/s]':>12s} {'ratio':>8s}")
     for name, per_batch, per_loop in rows:
-        print(f"{name:28s} {1 / per_batch:14,.0f} {1 / per_loop:12,.0f} {per_loop / per_batch:8.0f}x")
+        print(
+            f"{name:28s} {1 / per_batch:14,.0f} {1 / per_loop:12,.0f} {per_loop / per_batch:8.0f}x"
+        )
 
 
 if __name__ == "__main__":

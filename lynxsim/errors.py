@@ -76,3 +76,104 @@ class UnreachablePlatformPoseError(UnreachablePoseError):
     def __init__(self, message: str, legs: tuple[int, ...]) -> None:
         super().__init__(message)
         self.legs = legs
+
+
+class TrajectoryError(LynxsimError):
+    """A trajectory cannot be generated as asked."""
+
+
+class LimitViolationError(TrajectoryError, ValueError):
+    """A trajectory breaks a joint range or a velocity, acceleration or jerk limit.
+
+    Attributes:
+        joint: 1-based number of the offending joint.
+        quantity: ``"position"``, ``"velocity"``, ``"acceleration"`` or ``"jerk"``.
+        time: When the worst violation happens [s] from the trajectory's start.
+        segment: 0-based index of the segment it happens in.
+        value: The offending value [rad, rad/s, rad/s^2 or rad/s^3].
+        limit: The bound it breaks, in the same unit.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        joint: int,
+        quantity: str,
+        time: float,
+        segment: int,
+        value: float,
+        limit: float,
+    ) -> None:
+        super().__init__(message)
+        self.joint = joint
+        self.quantity = quantity
+        self.time = time
+        self.segment = segment
+        self.value = value
+        self.limit = limit
+
+
+class SegmentDurationError(TrajectoryError, ValueError):
+    """A given segment duration is shorter than the limits allow (Ruckig).
+
+    Attributes:
+        segment: 0-based index of the segment.
+        joint: 1-based number of the joint that needs the most time.
+        given: The duration asked for [s].
+        required: The shortest duration within the limits [s].
+    """
+
+    def __init__(
+        self, message: str, *, segment: int, joint: int, given: float, required: float
+    ) -> None:
+        super().__init__(message)
+        self.segment = segment
+        self.joint = joint
+        self.given = given
+        self.required = required
+
+
+class TaskFileError(LynxsimError, ValueError):
+    """A task file is not valid TOML or breaks the task schema.
+
+    Attributes:
+        path: The file.
+        field: Dotted path of the offending field (``"poses[2].pitch_deg"``), or
+            ``None`` when the problem is the file as a whole.
+    """
+
+    def __init__(self, path: str, field: str | None, problem: str) -> None:
+        where = f"{path}: {field}" if field else path
+        super().__init__(f"{where}: {problem}")
+        self.path = path
+        self.field = field
+
+
+class PathError(TrajectoryError, ValueError):
+    """A Cartesian path cannot be followed continuously by the joints.
+
+    It passes a singular configuration (the base axis, the stretched arm), where
+    joint rates are unbounded, or the IK solution jumps (the arm would have to
+    change configuration, e.g. from leaning forward to leaning back).
+
+    Attributes:
+        segment: 0-based index of the segment.
+        joint: 1-based number of the joint concerned.
+        fraction: Where along the segment's line, in [0, 1].
+    """
+
+    def __init__(self, message: str, *, segment: int, joint: int, fraction: float) -> None:
+        super().__init__(message)
+        self.segment = segment
+        self.joint = joint
+        self.fraction = fraction
+
+
+__all__ += [
+    "LimitViolationError",
+    "PathError",
+    "SegmentDurationError",
+    "TaskFileError",
+    "TrajectoryError",
+]

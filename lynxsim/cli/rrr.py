@@ -1,0 +1,318 @@
+"""``lynxsim rrr ik | fk | workspace | poses``: the 3-RRR robot at the command line.
+
+Lengths in mm and angles in degrees unless ``--si`` is given (m, rad).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.errors import InvalidInputError
+from lynxsim.rrr import (
+    N_MODES,
+    RRR_ROBOT,
+    fk_all,
+    ik,
+    mode_label,
+    orientation_range,
+    orientation_range_in_mode,
+    singularity_measures,
+)
+from lynxsim.rrr.report import FIGURE20_POSES, REPORT_MODE, format_figure20_table
+
+__all__ = ["register"]
+
+NEAR_SINGULAR = 0.05
+"""|measure| below which a working mode is flagged as near a singularity [-]."""
+
+DEFAULT_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
+"""The orientations of the report's Figure 21 [deg]."""
+
+
+class _Units:
+    """Conversion between SI and the units shown at the command line."""
+
+    def __init__(self, si: bool) -> None:
+        self.si = si
+        self.length = "m" if si else "mm"
+        self.angle = "rad" if si else "deg"
+        self._length_scale = 1.0 if si else 1e3
+
+    def length_in(self, v: float) -> float:
+        return v / self._length_scale
+
+    def angle_in(self, v: float) -> float:
+        return v if self.si else math.radians(v)
+
+    def length_out(self, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        return np.asarray(v, dtype=float) * self._length_scale
+
+    def angle_out(self, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        a = np.asarray(v, dtype=float)
+        return a if self.si else np.degrees(a)
+
+    def fmt_length(self, v: float) -> str:
+        return f"{v:.6f}" if self.si else f"{v:.2f}"
+
+    def fmt_angle(self, v: float) -> str:
+        return f"{v:.5f}" if self.si else f"{v:.2f}"
+
+
+def _finite(values: list[float], what: str) -> None:
+    if not all(math.isfinite(v) for v in values):
+        raise InvalidInputError(f"{what} must be finite numbers, got {values}")
+
+
+def _add_units(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--si", action="store_true", help="inputs and outputs in m and rad instead of mm and deg"
+    )
+    p.add_argument("--json", action="store_true", help="machine-readable output, units labelled")
+
+
+def _json_list(a: npt.NDArray[np.float64]) -> list[float]:
+    out: list[float] = np.round(a, 9).tolist()
+    return out
+
+
+def _ik(args: argparse.Namespace) -> int:
+    u = _Units(args.si)
+    _finite([args.x, args.y, args.alpha], "platform pose")
+    pose = np.array([u.length_in(args.x), u.length_in(args.y), u.angle_in(args.alpha)])
+    result = ik(pose)
+    result.raise_for_status()
+    meas = singularity_measures(pose, result.theta)
+    theta = u.angle_out(result.theta)
+    spans = u.length_out(result.leg_span)
+    serial = float(meas.serial[0])
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "units": {"length": u.length, "angle": u.angle},
+                    "pose": {"x": args.x, "y": args.y, "alpha": args.alpha},
+                    "leg_span": _json_list(spans),
+                    "serial_measure": round(serial, 9),
+                    "modes": [
+                        {
+                            "mode": m,
+                            "elbow_signs": mode_label(m),
+                            "theta": _json_list(theta[m]),
+                            "parallel_measure": round(float(meas.parallel[m]), 9),
+                        }
+                        for m in range(N_MODES)
+                    ],
+                },
+                indent=2,
+            )
+        )
+        return 0
+    near = "  (near a leg singularity)" if serial < NEAR_SINGULAR else ""
+    print(
+        f"leg spans |P_i - B_i| [{u.length}]: "
+        + "  ".join(u.fmt_length(v) for v in spans)
+        + f"   leg-singularity measure {serial:.3f}{near}"
+    )
+    print(
+        f"mode  elbows {'theta1':>10s} {'theta2':>10s} {'theta3':>10s} [{u.angle}]"
+        "  parallel measure"
+    )
+    for m in range(N_MODES):
+        par = float(meas.parallel[m])
+        flag = "  near a parallel singularity" if abs(par) < NEAR_SINGULAR else ""
+        angles = " ".join(f"{u.fmt_angle(v):>10s}" for v in theta[m])
+        print(f"{m:<5d} {mode_label(m):6s} {angles}        {par:+.3f}{flag}")
+    return 0
+
+
+def _fk(args: argparse.Namespace) -> int:
+    u = _Units(args.si)
+    _finite(args.theta, "actuated angles")
+    theta = np.array([u.angle_in(v) for v in args.theta])
+    sol = fk_all(theta)
+    count = int(sol.num_solutions)
+    poses = sol.pose[:count]
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "units": {"length": u.length, "angle": u.angle},
+                    "theta": args.theta,
+                    "assembly_modes": [
+                        {
+                            "x": float(u.length_out(p[0])),
+                            "y": float(u.length_out(p[1])),
+                            "alpha": float(u.angle_out(p[2])),
+                            "working_mode": int(m),
+                        }
+                        for p, m in zip(poses, sol.mode[:count], strict=True)
+                    ],
+                },
+                indent=2,
+            )
+        )
+        return 0
+    if count == 0:
+        print("no platform pose closes the three loops for these angles")
+        return 0
+    print(f"{count} assembly mode{'s' if count > 1 else ''}:")
+    print(f"{'x':>10s} {'y':>10s} [{u.length}] {'alpha':>10s} [{u.angle}]  working mode")
+    for p, m in zip(poses, sol.mode[:count], strict=True):
+        print(
+            f"{u.fmt_length(float(u.length_out(p[0]))):>10s} "
+            f"{u.fmt_length(float(u.length_out(p[1]))):>10s}      "
+            f"{u.fmt_angle(float(u.angle_out(p[2]))):>10s}        {m} ({mode_label(int(m))})"
+        )
+    return 0
+
+
+def _workspace(args: argparse.Namespace) -> int:
+    from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
+    from lynxsim.rrr import workspace_map
+
+    _finite(list(args.alpha_deg) + [args.resolution_mm], "--alpha-deg and --resolution-mm")
+    if args.resolution_mm <= 0.0:
+        raise InvalidInputError(f"--resolution-mm must be positive, got {args.resolution_mm}")
+    alphas = [math.radians(a) for a in args.alpha_deg]
+    x0, x1, y0, y1 = view_extent(alphas)
+    step = args.resolution_mm * 1e-3
+    if (x1 - x0) / step * (y1 - y0) / step > 5e7:
+        raise InvalidInputError(f"--resolution-mm {args.resolution_mm} makes too large a grid")
+    xs = np.arange(x0, x1 + step / 2, step)
+    ys = np.arange(y0, y1 + step / 2, step)
+    maps = [workspace_map(xs, ys, a) for a in alphas]
+    plot_rrr_workspace(maps, args.out, mode=args.mode)
+    for wmap in maps:
+        alpha_deg = math.degrees(wmap.alpha)
+        line = f"alpha {alpha_deg:+7.2f} deg: reachable area {wmap.area * 1e6:9,.0f} mm²"
+        if args.mode is not None:
+            free = wmap.singularity_free(args.mode, NEAR_SINGULAR).sum() * wmap.cell_area
+            line += (
+                f", {free * 1e6:9,.0f} mm² of it >= {NEAR_SINGULAR} from singularities "
+                f"in mode {args.mode}"
+            )
+        print(line)
+    print(f"wrote {args.out}")
+    return 0
+
+
+def _poses(args: argparse.Namespace) -> int:
+    print(format_figure20_table())
+    centre = np.asarray(RRR_ROBOT.base_centre)
+    rng = orientation_range(centre)
+    print()
+    print(
+        f"orientations reachable at the base centre C_b = ({centre[0] * 1e3:.2f}, "
+        f"{centre[1] * 1e3:.2f}) mm: {math.degrees(float(rng.lower)):+.2f} to "
+        f"{math.degrees(float(rng.upper)):+.2f} deg "
+        f"(limited by legs {rng.limiting_leg[0]} and {rng.limiting_leg[1]})"
+    )
+    for m in range(N_MODES):
+        lo, hi = orientation_range_in_mode(float(centre[0]), float(centre[1]), m)
+        print(
+            f"  without meeting a parallel singularity in mode {m} ({mode_label(m)}): "
+            f"{math.degrees(lo):+.2f} to {math.degrees(hi):+.2f} deg"
+        )
+    if args.out is not None:
+        from lynxsim.plots.rrr import plot_rrr_poses
+
+        poses = np.array(
+            [[p.x_mm * 1e-3, p.y_mm * 1e-3, math.radians(p.alpha_deg)] for p in FIGURE20_POSES]
+        )
+        labels = [
+            f"({p.label}) {p.x_mm:g}, {p.y_mm:g} mm, {p.alpha_deg:g}°" for p in FIGURE20_POSES
+        ]
+        plot_rrr_poses(poses, args.out, mode=args.mode, labels=labels)
+        print(f"wrote {args.out}")
+    return 0
+
+
+def _mode_arg(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"working mode must be an integer 0..7, got {text!r}"
+        ) from None
+    if not 0 <= value < N_MODES:
+        raise argparse.ArgumentTypeError(f"working mode must be 0..7, got {value}")
+    return value
+
+
+def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the ``rrr`` command group (``ik``, ``fk``, ``workspace``, ``poses``)."""
+    group = sub.add_parser(
+        "rrr",
+        help="kinematics of the planar 3-RRR parallel robot",
+        description="Kinematics of the report's planar 3-RRR robot. Working modes 0..7: "
+        "bit i set when leg i+1's elbow sign is -1 (see lynxsim.rrr.modes).",
+    )
+    rrr_sub = group.add_subparsers(dest="rrr_command", required=True)
+
+    p = rrr_sub.add_parser(
+        "ik",
+        help="actuated angles of a platform pose in all 8 working modes",
+        description="Inverse kinematics of the platform pose X Y [mm] ALPHA [deg] (--si: m, "
+        "rad). Prints the base angles of every working mode; an unreachable pose names the "
+        "leg that fails and exits with status 1.",
+    )
+    p.add_argument("x", type=float, metavar="X")
+    p.add_argument("y", type=float, metavar="Y")
+    p.add_argument("alpha", type=float, metavar="ALPHA")
+    _add_units(p)
+    p.set_defaults(handler=_ik)
+
+    p = rrr_sub.add_parser(
+        "fk",
+        help="every platform pose (assembly mode) of three actuated angles",
+        description="Forward kinematics of the actuated angles THETA1..3 [deg] (--si: rad).",
+    )
+    p.add_argument("theta", type=float, nargs=3, metavar=("THETA1", "THETA2", "THETA3"))
+    _add_units(p)
+    p.set_defaults(handler=_fk)
+
+    p = rrr_sub.add_parser(
+        "workspace",
+        help="constant-orientation workspace maps (PNG)",
+        description="Plot the reachable platform centres at each orientation with the leg "
+        "annuli and the parallel-singularity loci of all working modes (or of --mode).",
+    )
+    p.add_argument(
+        "--alpha-deg",
+        "--alpha",
+        type=float,
+        nargs="+",
+        default=list(DEFAULT_ALPHAS_DEG),
+        metavar="DEG",
+        help="platform orientations [deg] (default: the report's 0 20 -20 50 -50)",
+    )
+    p.add_argument("--out", type=Path, default=Path("rrr_workspace.png"), help="PNG file")
+    p.add_argument("--resolution-mm", type=float, default=2.0, help="grid step [mm]")
+    p.add_argument(
+        "--mode",
+        type=_mode_arg,
+        default=None,
+        help="shade this working mode's parallel-singularity measure",
+    )
+    p.set_defaults(handler=_workspace)
+
+    p = rrr_sub.add_parser(
+        "poses",
+        help="the report's Figure 20 poses judged with the correct geometry",
+        description="Print the Figure 20 verdicts (correct geometry and the report's) and "
+        "the orientation range at the base centre; --out draws the poses.",
+    )
+    p.add_argument("--out", type=Path, default=None, help="PNG file of the poses")
+    p.add_argument(
+        "--mode",
+        type=_mode_arg,
+        default=REPORT_MODE,
+        help=f"working mode drawn (default {REPORT_MODE}, the report's)",
+    )
+    p.set_defaults(handler=_poses)

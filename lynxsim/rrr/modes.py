@@ -1,0 +1,96 @@
+"""Working modes of the 3-RRR robot: which way each leg's elbow is bent.
+
+Each leg reaches its platform joint with two elbow branches. The branch of leg
+``i`` is its **elbow sign**
+
+    ``sigma_i = sign(z · ((E_i - B_i) × (P_i - E_i)))``,
+
++1 when the distal link turns counter-clockwise from the proximal link (the
+elbow lies to the right of the line from ``B_i`` to ``P_i``), -1 when it turns
+clockwise. The three signs make one of 8 **working modes**, numbered 0..7:
+bit ``i`` of the mode index is set when leg ``i + 1`` has sigma = -1.
+
+=====  =============  =====  =============
+index  signs          index  signs
+=====  =============  =====  =============
+0      (+1, +1, +1)   4      (+1, +1, -1)
+1      (-1, +1, +1)   5      (-1, +1, -1)
+2      (+1, -1, +1)   6      (+1, -1, -1)
+3      (-1, -1, +1)   7      (-1, -1, -1)
+=====  =============  =====  =============
+
+With ``theta_i`` the proximal angle and ``phi_i`` the direction of
+``P_i - B_i``, sigma = +1 means ``theta_i = phi_i - gamma_i`` with the
+interior angle ``gamma_i`` in [0, pi] at ``B_i``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.errors import InvalidInputError
+
+__all__ = ["MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
+
+N_MODES = 8
+"""Number of working modes (two elbow branches for each of three legs)."""
+
+MODE_SIGNS: npt.NDArray[np.int8] = np.array(
+    [[-1 if (m >> leg) & 1 else 1 for leg in range(3)] for m in range(N_MODES)], dtype=np.int8
+)
+"""Elbow signs of every working mode, shape (8, 3), row = mode index (read-only)."""
+MODE_SIGNS.setflags(write=False)
+
+
+def _check_index(mode: npt.ArrayLike) -> npt.NDArray[np.intp]:
+    m = np.asarray(mode)
+    if not np.issubdtype(m.dtype, np.integer) or ((m < 0) | (m >= N_MODES)).any():
+        raise InvalidInputError(f"working mode must be an integer in 0..7, got {mode!r}")
+    return m.astype(np.intp)
+
+
+def mode_signs(mode: npt.ArrayLike) -> npt.NDArray[np.int8]:
+    """Elbow signs of working mode(s).
+
+    Args:
+        mode: Mode index or indices in 0..7, any shape.
+
+    Returns:
+        Shape mode.shape + (3,), entries ±1.
+
+    Raises:
+        InvalidInputError: If an index is not an integer in 0..7.
+    """
+    return MODE_SIGNS[_check_index(mode)]
+
+
+def mode_index(signs: npt.ArrayLike | Sequence[int]) -> npt.NDArray[np.intp]:
+    """Working-mode index of elbow signs (the inverse of :func:`mode_signs`).
+
+    Args:
+        signs: Elbow signs, shape (..., 3), entries ±1.
+
+    Returns:
+        Mode indices, shape (...).
+
+    Raises:
+        InvalidInputError: If the last axis is not 3 or an entry is not ±1.
+    """
+    s = np.asarray(signs)
+    if s.ndim == 0 or s.shape[-1] != 3 or not np.isin(s, (-1, 1)).all():
+        raise InvalidInputError(f"elbow signs must be ±1 with shape (..., 3), got {signs!r}")
+    bits = (s < 0).astype(np.intp)
+    out: npt.NDArray[np.intp] = bits[..., 0] + 2 * bits[..., 1] + 4 * bits[..., 2]
+    return out
+
+
+def mode_label(mode: int) -> str:
+    """Short text for a working mode, e.g. ``"+-+"`` for mode 2.
+
+    Raises:
+        InvalidInputError: If ``mode`` is not an integer in 0..7.
+    """
+    return "".join("+" if s > 0 else "-" for s in mode_signs(mode))

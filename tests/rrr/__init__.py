@@ -1,0 +1,1 @@
+"""Tests of the 3-RRR kinematics (lynxsim.rrr), its figures and its CLI."""
