@@ -1,0 +1,205 @@
+"""``lynxsim traj``: trajectories of a task file, written as samples and plots.
+
+Samples are in degrees and millimetres unless ``--si`` (rad, m); every column
+or array name carries its unit.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from lynxsim.arm import tool_pose
+from lynxsim.errors import InvalidInputError, LynxsimError
+from lynxsim.fileio import atomic_path
+from lynxsim.tasks import Task, load_task
+from lynxsim.traj import Trajectory, TrajectoryKind, build_trajectory
+
+__all__ = ["register"]
+
+_ORDERS = (("q", ""), ("qd", "_s"), ("qdd", "_s2"), ("qddd", "_s3"))
+
+
+class _Samples(NamedTuple):
+    """One sampled quantity: its NPZ key, values and CSV column names (units in all)."""
+
+    key: str
+    values: np.ndarray
+    columns: tuple[str, ...]
+
+
+def _samples(traj: Trajectory, t: np.ndarray, si: bool) -> list[_Samples]:
+    angle, length, scale = ("rad", "m", 1.0) if si else ("deg", "mm", 1e3)
+    to_angle = (lambda v: v) if si else np.degrees
+    states = traj.sample(t)
+    pose = tool_pose(states.q)
+    out = [_Samples("t_s", t, ("t_s",))]
+    for (name, per), values in zip(_ORDERS, states):
+        unit = f"{angle}{per}"
+        out.append(
+            _Samples(
+                f"{name}_{unit}", to_angle(values), tuple(f"{name}{j}_{unit}" for j in range(1, 6))
+            )
+        )
+    out.append(
+        _Samples(
+            f"tool_position_{length}",
+            pose.position * scale,
+            tuple(f"{axis}_{length}" for axis in "xyz"),
+        )
+    )
+    out.append(_Samples(f"pitch_{angle}", to_angle(pose.pitch), (f"pitch_{angle}",)))
+    return out
+
+
+def _write_csv(path: Path, samples: list[_Samples]) -> None:
+    table = np.column_stack([s.values for s in samples])
+    header = ",".join(c for s in samples for c in s.columns)
+    with atomic_path(path) as tmp:
+        np.savetxt(tmp, table, delimiter=",", header=header, comments="", fmt="%.9g")
+
+
+def _write_npz(path: Path, samples: list[_Samples], traj: Trajectory) -> None:
+    arrays: dict[str, Any] = {s.key: s.values for s in samples}
+    arrays["waypoint_times_s"] = traj.waypoint_times
+    arrays["waypoint_names"] = np.array(traj.waypoints.names)
+    arrays["kind"] = np.array(traj.kind.value)
+    with atomic_path(path) as tmp:
+        np.savez(tmp, **arrays)
+
+
+def _apply_overrides(task: Task, args: argparse.Namespace) -> Task:
+    if args.shortest:
+        task = dataclasses.replace(task, durations=None)
+    elif args.segment_duration_s is not None:
+        n = len(task.poses) - 1
+        task = dataclasses.replace(task, durations=(args.segment_duration_s,) * n)
+    if args.stretch is not None:
+        task = dataclasses.replace(task, stretch=args.stretch)
+    if args.pass_through:
+        task = dataclasses.replace(task, pass_through=True)
+    return task
+
+
+def _comparison(task: Task, out: Path) -> Path:
+    from lynxsim.plots.trajectory import plot_tool_paths
+
+    trajectories = {}
+    for kind in TrajectoryKind:
+        try:
+            trajectories[kind.value] = build_trajectory(task, kind)
+        except LynxsimError as exc:
+            print(f"lynxsim: note: no {kind.value} path in the comparison: {exc}", file=sys.stderr)
+    dest = out / f"{task.name}_paths.png"
+    plot_tool_paths(trajectories, dest, title=f"{task.name}: tool paths of every trajectory type")
+    return dest
+
+
+def _list() -> int:
+    width = max(len(k.value) for k in TrajectoryKind)
+    for kind in TrajectoryKind:
+        print(f"{kind.value:{width}s}  {kind.description}")
+    return 0
+
+
+def _traj(args: argparse.Namespace) -> int:
+    if args.list:
+        return _list()
+    if args.task is None:
+        raise InvalidInputError("give a task file (e.g. tasks/pick_and_place.toml), or --list")
+    from lynxsim.plots.trajectory import plot_joint_profiles
+
+    task = _apply_overrides(load_task(args.task), args)
+    traj = build_trajectory(task, args.type)
+    t = traj.times_at_rate(args.rate_hz)
+    data = _samples(traj, t, args.si)
+    out: Path = args.out
+    stem = f"{task.name}_{traj.kind.value}"
+    samples = out / f"{stem}.{args.format}"
+    if args.format == "csv":
+        _write_csv(samples, data)
+    else:
+        _write_npz(samples, data, traj)
+    joints = out / f"{stem}_joints.png"
+    plot_joint_profiles(
+        traj, joints, title=f"{task.name}: {traj.kind.value} trajectory, {traj.duration:.3f} s"
+    )
+    written = [samples, joints]
+    if not args.no_compare:
+        written.append(_comparison(task, out))
+    durations = ", ".join(f"{d:.3f}" for d in traj.segment_durations)
+    print(
+        f"{task.name}: {traj.kind.value} trajectory through {', '.join(traj.waypoints.names)}, "
+        f"{traj.duration:.3f} s (segments {durations} s), {t.size} samples at {args.rate_hz:g} Hz"
+    )
+    for path in written:
+        print(f"wrote {path}")
+    return 0
+
+
+def _positive(text: str) -> float:
+    value = float(text)
+    if not (np.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
+    return value
+
+
+def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the ``traj`` sub-command."""
+    types = [k.value for k in TrajectoryKind]
+    p = sub.add_parser(
+        "traj",
+        help="trajectories of a task file: samples (CSV/NPZ) and plots (PNG)",
+        description="Build a trajectory through a task's poses and write its samples, its "
+        "joint profiles and a comparison of the tool paths of every type. Samples in deg and "
+        "mm unless --si.",
+    )
+    p.add_argument(
+        "task", type=Path, nargs="?", help="task file (TOML), e.g. tasks/pick_and_place.toml"
+    )
+    p.add_argument("--list", action="store_true", help="list the trajectory types and exit")
+    p.add_argument(
+        "--type", choices=types, default=None, help="trajectory type (default: the task's)"
+    )
+    p.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
+    p.add_argument(
+        "--rate-hz",
+        type=_positive,
+        default=500.0,
+        help="sampling rate of the written samples (default 500)",
+    )
+    p.add_argument("--format", choices=("csv", "npz"), default="csv", help="samples file format")
+    p.add_argument("--si", action="store_true", help="samples in rad and m instead of deg and mm")
+    timing = p.add_mutually_exclusive_group()
+    timing.add_argument(
+        "--segment-duration-s",
+        type=_positive,
+        default=None,
+        help="duration of every segment, overriding the task's",
+    )
+    timing.add_argument(
+        "--shortest",
+        action="store_true",
+        help="shortest segments within the joint limits, ignoring the task's durations",
+    )
+    p.add_argument(
+        "--stretch",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="lengthen segments the joint limits cannot fit in the given duration, or not "
+        "(default: as the task says)",
+    )
+    p.add_argument(
+        "--pass-through",
+        action="store_true",
+        help="ruckig: pass intermediate poses without stopping",
+    )
+    p.add_argument(
+        "--no-compare", action="store_true", help="skip the tool-path comparison of every type"
+    )
+    p.set_defaults(handler=_traj)

@@ -1,0 +1,311 @@
+"""Straight tool lines in Cartesian space, joints from the IK at every sample.
+
+Between consecutive waypoints the tool point moves on the straight line
+``p(tau) = p0 + (p1 - p0) s(tau / T)``; pitch and roll move by the same
+fraction. ``s`` is the rest-to-rest quintic, so the tool stops at every
+waypoint and joint velocity and acceleration are continuous everywhere (the
+report's straight line, sampled at constant speed, jumps in velocity).
+
+Joints come from the closed-form IK of :mod:`lynxsim.arm.ik`, restricted to the
+solution branch of the segment's first waypoint (so the arm never changes
+configuration mid-line), for all samples in one vectorised evaluation. Joint
+velocity, acceleration and jerk are exact: the chain rule through the IK
+(``q1`` from ``log(x + i y)``, the planar two-link arm solved as a complex
+linear system for each derivative order).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.arm import LYNX_ARM, ArmGeometry, ik, wrap_angle
+from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
+from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
+from lynxsim.traj.kinds import TrajectoryKind
+from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.polynomial import DURATION_HINT, quintic_scaling
+from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
+from lynxsim.traj.trajectory import Trajectory
+from lynxsim.traj.waypoints import ArmPose, WaypointsLike, resolve_waypoints
+
+__all__ = ["LineSegment", "cartesian_line"]
+
+FloatArray = npt.NDArray[np.float64]
+
+REACH_TOL = 1e-9
+"""Slack on the reach test ``|cos q3| <= 1`` [-], as the arm's IK."""
+
+JUMP_FACTOR = 2.0
+"""A grid step moving a joint more than this many times its rate allows is a jump [-]."""
+
+JUMP_TOL = 1e-6
+"""Absolute slack of the jump test [rad]."""
+
+
+@dataclass(frozen=True)
+class LineSegment:
+    """The tool on a straight line between two poses, one IK branch throughout.
+
+    Attributes:
+        start: Pose at the start (``roll`` set).
+        end: Pose at the end (``roll`` set).
+        duration: Segment duration [s].
+        branch: IK candidate slot (0..3, see :mod:`lynxsim.arm.ik`): bit 1 the
+            base side (0: as the target's heading, 1: turned by pi), bit 0 the
+            elbow (0: ``q3 <= 0``, 1: ``q3 >= 0``).
+        geometry: The arm description.
+    """
+
+    start: ArmPose
+    end: ArmPose
+    duration: float
+    branch: int
+    geometry: ArmGeometry = LYNX_ARM
+    _rolls: tuple[float, float] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.start.roll is None or self.end.roll is None:
+            raise InvalidInputError("line segment poses need their roll set")
+        if not (math.isfinite(self.duration) and self.duration > 0.0):
+            raise InvalidInputError(f"duration must be positive, got {self.duration}")
+        if self.branch not in range(4):
+            raise InvalidInputError(f"branch must be 0..3, got {self.branch}")
+        object.__setattr__(self, "_rolls", (self.start.roll, self.end.roll))
+
+    @property
+    def breakpoints(self) -> FloatArray:
+        """None: one formula over the whole line, shape (0,) [s]."""
+        return np.empty(0)
+
+    def evaluate(self, tau: FloatArray) -> FloatArray:
+        """Joint states at local times ``tau``, shape (4, n, 5); see :class:`Segment`."""
+        return self.states(tau)[0]
+
+    def states(self, tau: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Joint states and the reach test at local times.
+
+        Args:
+            tau: Local times, shape (n,) [s].
+
+        Returns:
+            ``(states, cos_q3)``: states of shape (4, n, 5) as :meth:`evaluate`
+            (a view), and the elbow cosine before clipping, shape (n,) [-]
+            (the target is out of reach where ``|cos_q3| > 1``).
+        """
+        with np.errstate(divide="ignore", invalid="ignore"):  # singularities give inf/NaN
+            return self._states(tau)
+
+    def _states(self, tau: FloatArray) -> tuple[FloatArray, FloatArray]:
+        g = self.geometry
+        l2, l3, lt, h = g.upper_arm, g.forearm, g.tool_length, g.shoulder_height
+        duration = self.duration
+        s = quintic_scaling(tau / duration)
+        s[1] /= duration
+        s[2] /= duration**2
+        s[3] /= duration**3
+        p0, p1 = self.start.position, self.end.position
+        dx, dy, dz = p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]
+        side, elbow = divmod(self.branch, 2)
+        sigma = -1.0 if side else 1.0
+        dphi = sigma * (self.end.pitch - self.start.pitch)
+        roll0, roll1 = self._rolls
+        droll = roll1 - roll0
+
+        x = p0[0] + dx * s[0]
+        y = p0[1] + dy * s[0]
+        z = p0[2] + dz * s[0]
+        # Base angle and signed reach, folded as lynxsim.arm.ik does.
+        heading = np.arctan2(y, x)
+        rho = np.hypot(x, y)
+        folded = np.abs(heading) > np.pi / 2
+        q1 = np.where(folded, wrap_angle(heading + np.pi), heading)
+        reach = np.where(folded, -rho, rho)
+        # Pitch in the q1 direction: the target pitch, or pi minus it on side 1.
+        phi0 = sigma * self.start.pitch + (np.pi if side else 0.0)
+        phi = phi0 + dphi * s[0]
+        if side:
+            q1 = wrap_angle(q1 + np.pi)
+            reach = -reach
+        e_phi = np.exp(1j * phi) if dphi else complex(math.cos(phi0), math.sin(phi0))
+        # Wrist point in the arm's plane: W = l2 e^{i q2} + l3 e^{i (q2 + q3)}.
+        w = reach + 1j * (z - h) - lt * e_phi
+        cos3 = (w.real**2 + w.imag**2 - l2 * l2 - l3 * l3) / (2.0 * l2 * l3)
+        c3 = np.clip(cos3, -1.0, 1.0)
+        s3 = np.sqrt(1.0 - c3 * c3)
+        q3 = np.arccos(c3)
+        if not elbow:
+            s3 = -s3
+            q3 = -q3
+        e3 = c3 + 1j * s3
+        e2 = w / (l2 + l3 * e3)  # e^{i q2}
+        q2 = np.angle(e2)
+
+        out = np.empty((4, 5, tau.size))
+        out[0, 0] = q1
+        out[0, 1] = q2
+        out[0, 2] = q3
+        out[0, 3] = wrap_angle(phi - q2 - q3)
+        out[0, 4] = roll0 + droll * s[0]
+
+        # q1 = Im log(x + i y) and ln|reach| = Re log(x + i y), differentiated.
+        g1 = complex(dx, dy) / (x + 1j * y)
+        lg1 = g1 * s[1]
+        gs2 = g1 * s[2]
+        lg2 = gs2 - lg1 * lg1
+        lg3 = g1 * s[3] - 3.0 * lg1 * gs2 + 2.0 * lg1**3
+        r1 = reach * lg1.real
+        r2 = reach * (lg2.real + lg1.real**2)
+        r3 = reach * (lg3.real + 3.0 * lg1.real * lg2.real + lg1.real**3)
+        phi1, phi2, phi3 = dphi * s[1], dphi * s[2], dphi * s[3]
+        w1 = r1 + 1j * (dz * s[1])
+        w2 = r2 + 1j * (dz * s[2])
+        w3 = r3 + 1j * (dz * s[3])
+        if dphi:
+            w1 -= lt * (1j * phi1) * e_phi
+            w2 -= lt * (1j * phi2 - phi1 * phi1) * e_phi
+            w3 -= lt * (1j * phi3 - 3.0 * phi1 * phi2 - 1j * phi1**3) * e_phi
+        # Solve i (P a' + Q b') = c for the absolute link angles a = q2, b = q2 + q3.
+        p = l2 * e2
+        qv = l3 * e2 * e3
+        p_conj, q_conj = p.conjugate(), qv.conjugate()
+        inv_det = 1.0 / (l2 * l3 * s3)
+
+        def rates(c: npt.NDArray[np.complex128]) -> tuple[FloatArray, FloatArray]:
+            return (c * q_conj).real * inv_det, -(c * p_conj).real * inv_det
+
+        a1, b1 = rates(w1)
+        a2, b2 = rates(w2 + p * (a1 * a1) + qv * (b1 * b1))
+        a3, b3 = rates(w3 + 3.0 * (p * (a1 * a2) + qv * (b1 * b2)) + 1j * (p * a1**3 + qv * b1**3))
+        for order, (lq, a, b, dphi_k, s_k) in enumerate(
+            ((lg1, a1, b1, phi1, s[1]), (lg2, a2, b2, phi2, s[2]), (lg3, a3, b3, phi3, s[3])),
+            start=1,
+        ):
+            out[order, 0] = lq.imag
+            out[order, 1] = a
+            out[order, 2] = b - a
+            out[order, 3] = dphi_k - b
+            out[order, 4] = droll * s_k
+        return out.transpose(0, 2, 1), cos3
+
+
+def _branch(q: FloatArray, pose: ArmPose, geometry: ArmGeometry) -> int:
+    """The IK candidate slot that reproduces the joints ``q`` of a waypoint."""
+    result = ik(np.asarray(pose.position), pose.pitch, q[4], geometry=geometry)
+    distance = np.linalg.norm(wrap_angle(result.candidates - q), axis=-1)
+    return int(np.nanargmin(distance))
+
+
+class _UnitPath:
+    """A line evaluated at unit duration on its check grid (shapes scale with 1/T^k)."""
+
+    def __init__(self, k: int, segment: LineSegment, names: tuple[str, ...]) -> None:
+        self.k = k
+        self.segment = segment
+        self.u = check_grid(segment)
+        self.states, self.cos3 = segment.states(self.u)
+        self.label = f"straight line {names[k]} -> {names[k + 1]} (segment {k + 1})"
+        self.points = np.asarray(segment.start.position) + np.outer(
+            quintic_scaling(self.u)[0],
+            np.subtract(segment.end.position, segment.start.position),
+        )
+
+    def at(self, i: int) -> str:
+        x, y, z = (1e3 * float(v) for v in self.points[i])
+        return (
+            f"at {100 * self.u[i]:.1f} % of its duration (tool at ({x:.1f}, {y:.1f}, {z:.1f}) mm)"
+        )
+
+    def check_reach(self) -> None:
+        """Raise if the line leaves the reach or passes a singular configuration."""
+        out = np.flatnonzero(np.abs(self.cos3) > 1.0 + REACH_TOL)
+        if out.size:
+            raise OutOfReachError(f"{self.label} leaves the arm's reach {self.at(int(out[0]))}")
+        bad = np.argwhere(~np.isfinite(self.states[1:]))
+        if bad.size:
+            _, i, j = (int(v) for v in bad[0])
+            raise PathError(
+                f"{self.label} passes a singular configuration (base axis or stretched arm) "
+                f"{self.at(i)}: joint {j + 1} rate is unbounded",
+                segment=self.k,
+                joint=j + 1,
+                fraction=float(self.u[i]),
+            )
+
+    def extremes(self) -> Extremes:
+        """Refined extremes of the joints and their derivatives over the unit-time line."""
+        return segment_extremes(self.segment, self.u, self.states)
+
+    def check_jumps(self) -> None:
+        """Raise if a joint jumps between grid points (the IK changes configuration)."""
+        step = np.abs(np.diff(self.states[0], axis=0))
+        rate = np.maximum(np.abs(self.states[1, :-1]), np.abs(self.states[1, 1:]))
+        allowed = JUMP_FACTOR * rate * np.diff(self.u)[:, None] + JUMP_TOL
+        jump = np.argwhere(step > allowed)
+        if jump.size:
+            i, j = (int(v) for v in jump[0])
+            raise PathError(
+                f"{self.label}: joint {j + 1} jumps by {math.degrees(step[i, j]):.1f} deg "
+                f"{self.at(i)}; the IK solution changes configuration there",
+                segment=self.k,
+                joint=j + 1,
+                fraction=float(self.u[i]),
+            )
+
+
+def cartesian_line(
+    waypoints: WaypointsLike,
+    durations: Durations = None,
+    *,
+    limits: JointLimits = DEFAULT_LIMITS,
+    stretch: bool = False,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> Trajectory:
+    """Straight tool lines between the waypoints, quintic timing per line.
+
+    Joint ranges, velocity, acceleration and jerk limits are checked; with no
+    durations given, each line takes the shortest time that keeps them.
+
+    Args:
+        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
+        limits: Joint limits to respect.
+        stretch: Lengthen given durations that are too short for the limits.
+        geometry: The arm description.
+
+    Returns:
+        The checked :class:`Trajectory`.
+
+    Raises:
+        OutOfReachError: A line leaves the arm's reach (names the line and the point).
+        PathError: A line passes a singularity or needs a change of configuration.
+        LimitViolationError: A joint leaves its range on a line, or given durations
+            break a limit (names joint, time, excess).
+        UnreachablePoseError: A pose has no IK solution (names the pose).
+        InvalidInputError: Malformed waypoints or durations.
+    """
+    wp = resolve_waypoints(waypoints, geometry)
+    unit = [
+        LineSegment(a, b, 1.0, _branch(q, a, geometry), geometry)
+        for a, b, q in zip(wp.poses[:-1], wp.poses[1:], wp.q[:-1])
+    ]
+    paths = [_UnitPath(k, seg, wp.names) for k, seg in enumerate(unit)]
+    for path in paths:
+        path.check_reach()
+    unit_extremes = [p.extremes() for p in paths]
+    peaks = np.array([[e.peak(order) for e in unit_extremes] for order in (1, 2, 3)])
+    shortest = scaled_shortest(peaks, limits, TrajectoryKind.LINE.limited_orders)
+    times = segment_durations(durations, shortest, wp.names, stretch=stretch)
+    segments = tuple(
+        LineSegment(seg.start, seg.end, float(t), seg.branch, geometry)
+        for seg, t in zip(unit, times)
+    )
+    traj = Trajectory(TrajectoryKind.LINE, segments, wp, limits)
+    extremes = [e.time_scaled(float(t)) for e, t in zip(unit_extremes, times)]
+    check_trajectory(traj, geometry, hint=DURATION_HINT, extremes=extremes)
+    for path in paths:
+        path.check_jumps()
+    return traj

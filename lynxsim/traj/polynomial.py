@@ -1,0 +1,257 @@
+"""Joint-space polynomial trajectories: free motion, cubic and quintic.
+
+Every segment moves all joints along the straight line in joint space from one
+waypoint to the next, ``q(tau) = q0 + (q1 - q0) s(tau / T)``:
+
+* free motion: ``s(u) = u`` (the report's fixed joint increments per step);
+* cubic: zero velocity at both ends (report eqs. 35–42);
+* quintic: zero velocity and acceleration at both ends (report eqs. 43–52).
+
+The cubic and quintic coefficients solve the boundary-condition systems of the
+report with its typos corrected (SPEC 3.5: the velocity row reads
+``0, 1, 2 t0, 3 t0^2, 4 t0^3, 5 t0^4`` and the final-acceleration row
+``0, 0, 2, 6 tf, 12 tf^2, 20 tf^3``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.arm import LYNX_ARM, ArmGeometry
+from lynxsim.traj.check import check_trajectory
+from lynxsim.traj.kinds import TrajectoryKind
+from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
+from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
+from lynxsim.traj.waypoints import WaypointsLike, resolve_waypoints
+
+__all__ = [
+    "cubic",
+    "cubic_coefficients",
+    "free_motion",
+    "quintic",
+    "quintic_coefficients",
+    "quintic_scaling",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+DURATION_HINT = "give longer durations, set stretch, or leave the durations out for the shortest"
+
+
+def cubic_coefficients(
+    t0: float,
+    tf: float,
+    q0: npt.ArrayLike,
+    v0: npt.ArrayLike,
+    qf: npt.ArrayLike,
+    vf: npt.ArrayLike,
+) -> FloatArray:
+    """Cubic ``q(t) = a0 + a1 t + a2 t^2 + a3 t^3`` through boundary conditions.
+
+    Solves the report's eq. 42 with the velocity row corrected to
+    ``0, 1, 2 t0, 3 t0^2``.
+
+    Args:
+        t0: Start time [s].
+        tf: End time [s], ``tf != t0``.
+        q0: Start position, shape S [rad].
+        v0: Start velocity, broadcastable to S [rad/s].
+        qf: End position, broadcastable to S [rad].
+        vf: End velocity, broadcastable to S [rad/s].
+
+    Returns:
+        ``a0..a3``, shape (4,) + S [rad/s^k], ascending powers of ``t``.
+    """
+    a = np.array(
+        [
+            [1.0, t0, t0**2, t0**3],
+            [0.0, 1.0, 2 * t0, 3 * t0**2],
+            [1.0, tf, tf**2, tf**3],
+            [0.0, 1.0, 2 * tf, 3 * tf**2],
+        ]
+    )
+    b = np.array(np.broadcast_arrays(q0, v0, qf, vf), dtype=float)
+    return np.linalg.solve(a, b.reshape(4, -1)).reshape(b.shape)
+
+
+def quintic_coefficients(
+    t0: float,
+    tf: float,
+    q0: npt.ArrayLike,
+    v0: npt.ArrayLike,
+    a0: npt.ArrayLike,
+    qf: npt.ArrayLike,
+    vf: npt.ArrayLike,
+    af: npt.ArrayLike,
+) -> FloatArray:
+    """Quintic ``q(t) = sum_k a_k t^k`` through position, velocity, acceleration at both ends.
+
+    Solves the report's eq. 52 with its two typos corrected (SPEC 3.5).
+
+    Args:
+        t0: Start time [s].
+        tf: End time [s], ``tf != t0``.
+        q0: Start position, shape S [rad].
+        v0: Start velocity, broadcastable to S [rad/s].
+        a0: Start acceleration, broadcastable to S [rad/s^2].
+        qf: End position, broadcastable to S [rad].
+        vf: End velocity, broadcastable to S [rad/s].
+        af: End acceleration, broadcastable to S [rad/s^2].
+
+    Returns:
+        ``a0..a5``, shape (6,) + S [rad/s^k], ascending powers of ``t``.
+    """
+
+    def rows(t: float) -> list[list[float]]:
+        return [
+            [1.0, t, t**2, t**3, t**4, t**5],
+            [0.0, 1.0, 2 * t, 3 * t**2, 4 * t**3, 5 * t**4],
+            [0.0, 0.0, 2.0, 6 * t, 12 * t**2, 20 * t**3],
+        ]
+
+    a = np.array(rows(t0) + rows(tf))
+    b = np.array(np.broadcast_arrays(q0, v0, a0, qf, vf, af), dtype=float)
+    return np.linalg.solve(a, b.reshape(6, -1)).reshape(b.shape)
+
+
+def quintic_scaling(u: FloatArray) -> FloatArray:
+    """The rest-to-rest quintic ``s(u) = 10 u^3 - 15 u^4 + 6 u^5`` and its derivatives.
+
+    Args:
+        u: Normalised time in [0, 1], shape (n,).
+
+    Returns:
+        ``s, ds/du, d2s/du2, d3s/du3``, shape (4, n).
+    """
+    u2 = u * u
+    w = u - u2  # u (1 - u)
+    return np.stack(
+        [
+            u2 * u * (10.0 - 15.0 * u + 6.0 * u2),
+            30.0 * w * w,
+            60.0 * w * (1.0 - 2.0 * u),
+            60.0 - 360.0 * w,
+        ]
+    )
+
+
+_UNIT_PEAKS = {
+    # Peak |d^k s / du^k| of each shape, k = 1, 2, 3.
+    TrajectoryKind.FREE: (1.0, 0.0, 0.0),
+    TrajectoryKind.CUBIC: (1.5, 6.0, 12.0),
+    TrajectoryKind.QUINTIC: (15.0 / 8.0, 10.0 / math.sqrt(3.0), 60.0),
+}
+
+
+def _free_coefficients(q0: FloatArray, q1: FloatArray, duration: float) -> FloatArray:
+    return np.stack([q0, (q1 - q0) / duration])
+
+
+def _cubic_coefficients(q0: FloatArray, q1: FloatArray, duration: float) -> FloatArray:
+    return cubic_coefficients(0.0, duration, q0, 0.0, q1, 0.0)
+
+
+def _quintic_coefficients(q0: FloatArray, q1: FloatArray, duration: float) -> FloatArray:
+    return quintic_coefficients(0.0, duration, q0, 0.0, 0.0, q1, 0.0, 0.0)
+
+
+_COEFFICIENTS: dict[TrajectoryKind, Callable[[FloatArray, FloatArray, float], FloatArray]] = {
+    TrajectoryKind.FREE: _free_coefficients,
+    TrajectoryKind.CUBIC: _cubic_coefficients,
+    TrajectoryKind.QUINTIC: _quintic_coefficients,
+}
+
+
+def _joint_polynomial(
+    kind: TrajectoryKind,
+    waypoints: WaypointsLike,
+    durations: Durations,
+    limits: JointLimits,
+    stretch: bool,
+    geometry: ArmGeometry,
+) -> Trajectory:
+    wp = resolve_waypoints(waypoints, geometry)
+    delta = np.abs(np.diff(wp.q, axis=0))
+    peaks = np.stack([f * delta for f in _UNIT_PEAKS[kind]])
+    shortest = scaled_shortest(peaks, limits, kind.limited_orders)
+    times = segment_durations(durations, shortest, wp.names, stretch=stretch)
+    make = _COEFFICIENTS[kind]
+    segments = tuple(
+        PolynomialSegment(np.array([0.0, t]), make(q0, q1, float(t))[None])
+        for q0, q1, t in zip(wp.q[:-1], wp.q[1:], times)
+    )
+    traj = Trajectory(kind, segments, wp, limits)
+    check_trajectory(traj, geometry, hint=DURATION_HINT)
+    return traj
+
+
+def free_motion(
+    waypoints: WaypointsLike,
+    durations: Durations = None,
+    *,
+    limits: JointLimits = DEFAULT_LIMITS,
+    stretch: bool = False,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> Trajectory:
+    """Free motion: every joint at constant speed from waypoint to waypoint.
+
+    Velocity jumps at every waypoint (acceleration impulses there), so only
+    joint ranges and velocity limits are checked.
+
+    Args:
+        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
+        limits: Joint limits to respect.
+        stretch: Lengthen given durations that are too short for the limits.
+        geometry: The arm description.
+
+    Returns:
+        The checked :class:`Trajectory`.
+
+    Raises:
+        LimitViolationError: Given durations break a limit (names joint, time, excess).
+        UnreachablePoseError: A pose has no IK solution (names the pose).
+        InvalidInputError: Malformed waypoints or durations.
+    """
+    return _joint_polynomial(TrajectoryKind.FREE, waypoints, durations, limits, stretch, geometry)
+
+
+def cubic(
+    waypoints: WaypointsLike,
+    durations: Durations = None,
+    *,
+    limits: JointLimits = DEFAULT_LIMITS,
+    stretch: bool = False,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> Trajectory:
+    """Cubic polynomial per segment, at rest at every waypoint.
+
+    Acceleration jumps at the waypoints, so joint ranges, velocity and
+    acceleration limits are checked. Arguments, returns and errors as
+    :func:`free_motion`.
+    """
+    return _joint_polynomial(TrajectoryKind.CUBIC, waypoints, durations, limits, stretch, geometry)
+
+
+def quintic(
+    waypoints: WaypointsLike,
+    durations: Durations = None,
+    *,
+    limits: JointLimits = DEFAULT_LIMITS,
+    stretch: bool = False,
+    geometry: ArmGeometry = LYNX_ARM,
+) -> Trajectory:
+    """Quintic polynomial per segment, zero velocity and acceleration at every waypoint.
+
+    Velocity and acceleration are continuous; ranges, velocity, acceleration
+    and jerk limits are checked. Arguments, returns and errors as
+    :func:`free_motion`.
+    """
+    return _joint_polynomial(
+        TrajectoryKind.QUINTIC, waypoints, durations, limits, stretch, geometry
+    )
