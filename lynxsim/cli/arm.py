@@ -7,63 +7,32 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 from pathlib import Path
 
 import numpy as np
 
 from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
+from lynxsim.cli.units import Units, add_unit_flags, check_finite, json_list
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["register"]
 
 
-class Units:
-    """Conversion between SI and the units shown at the command line."""
-
-    def __init__(self, si: bool) -> None:
-        self.si = si
-        self.length = "m" if si else "mm"
-        self.angle = "rad" if si else "deg"
-
-    def length_in(self, v: float) -> float:
-        return v if self.si else v * 1e-3
-
-    def angle_in(self, v: float) -> float:
-        return v if self.si else math.radians(v)
-
-    def length_out(self, v: np.ndarray) -> list[float]:
-        return np.round(np.asarray(v) * (1.0 if self.si else 1e3), 9).tolist()
-
-    def angle_out(self, v: np.ndarray) -> list[float]:
-        return np.round(np.asarray(v) if self.si else np.degrees(v), 9).tolist()
-
-
-def _add_units(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
-        "--si", action="store_true", help="inputs and outputs in m and rad instead of mm and deg"
-    )
-    p.add_argument("--json", action="store_true", help="machine-readable output, units labelled")
-
-
-def _finite(values: list[float], what: str) -> None:
-    if not all(math.isfinite(v) for v in values):
-        raise InvalidInputError(f"{what} must be finite numbers, got {values}")
-
-
 def _fk(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    _finite(args.q, "joint angles")
+    check_finite(args.q, "joint angles")
     q = np.array([u.angle_in(v) for v in args.q])
     pose = tool_pose(q)
     origins = frame_origins(q)
     out = {
         "units": {"length": u.length, "angle": u.angle},
-        "q": u.angle_out(q),
-        "tool_position": u.length_out(pose.position),
-        "pitch": u.angle_out(pose.pitch),
-        "roll": u.angle_out(pose.roll),
-        "frame_origins": {name: u.length_out(o) for name, o in zip(FRAME_NAMES, origins)},
+        "q": json_list(u.angle_out(q)),
+        "tool_position": json_list(u.length_out(pose.position)),
+        "pitch": json_list(u.angle_out(pose.pitch)),
+        "roll": json_list(u.angle_out(pose.roll)),
+        "frame_origins": {
+            name: json_list(u.length_out(o)) for name, o in zip(FRAME_NAMES, origins)
+        },
     }
     if args.json:
         print(json.dumps(out, indent=2))
@@ -81,7 +50,7 @@ def _fk(args: argparse.Namespace) -> int:
 def _ik(args: argparse.Namespace) -> int:
     u = Units(args.si)
     values = [args.x, args.y, args.z, args.pitch] + ([args.roll] if args.roll is not None else [])
-    _finite(values, "target")
+    check_finite(values, "target")
     p = np.array([u.length_in(v) for v in (args.x, args.y, args.z)])
     roll = None if args.roll is None else u.angle_in(args.roll)
     result = ik(p, u.angle_in(args.pitch), roll)
@@ -93,15 +62,15 @@ def _ik(args: argparse.Namespace) -> int:
     if args.json:
         out = {
             "units": {"angle": u.angle},
-            "q": u.angle_out(result.q),
+            "q": json_list(u.angle_out(result.q)),
             "candidates": [
-                {"q": u.angle_out(c), "valid": bool(v)}
+                {"q": json_list(u.angle_out(c)), "valid": bool(v)}
                 for c, v in zip(result.candidates, result.valid)
             ],
         }
         print(json.dumps(out, indent=2))
         return 0
-    q = u.angle_out(result.q)
+    q = json_list(u.angle_out(result.q))
     print("q1..q5 [" + u.angle + "]: " + "  ".join(f"{v:.2f}" for v in q))
     n_valid = int(result.valid.sum())
     if n_valid > 1:
@@ -141,7 +110,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "and degrees, unless --si (rad in, m and rad out).",
     )
     p.add_argument("q", type=float, nargs=5, metavar=("Q1", "Q2", "Q3", "Q4", "Q5"))
-    _add_units(p)
+    add_unit_flags(p)
     p.set_defaults(handler=_fk)
 
     p = sub.add_parser(
@@ -153,7 +122,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     for name in ("x", "y", "z", "pitch"):
         p.add_argument(name, type=float, metavar=name.upper())
     p.add_argument("roll", type=float, nargs="?", default=None, metavar="ROLL")
-    _add_units(p)
+    add_unit_flags(p)
     p.set_defaults(handler=_ik)
 
     p = sub.add_parser(

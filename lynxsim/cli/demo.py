@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -44,12 +46,46 @@ def _kinematics_tables() -> None:
     )
 
 
+def _arm_simulations(args: argparse.Namespace) -> None:
+    from tqdm import tqdm
+
+    from lynxsim.cli.play import SUMMARY_HEADER, summary_row
+    from lynxsim.demo import arm_runs, find_tasks, run_arm_demo
+    from lynxsim.sim.render import Quality, RenderSettings
+
+    runs = list(arm_runs(find_tasks(args.tasks, "arm"), lambda m: print(f"skipped: {m}")))
+    print(f"\nSimulating {len(runs)} arm runs into {args.out}/ (MP4, JSON reports, plots/)")
+    with tqdm(total=len(runs), unit="run", disable=args.quiet, file=sys.stderr) as bar:
+
+        def progress(i: int, fraction: float) -> None:
+            bar.n = min(len(runs), i + fraction)
+            bar.set_postfix_str(runs[i].stem)
+            bar.refresh()
+
+        reports = run_arm_demo(
+            runs, args.out, RenderSettings(quality=Quality(args.quality)), progress
+        )
+    print(SUMMARY_HEADER)
+    for report in reports:
+        print(summary_row(report))
+
+
 def _demo(args: argparse.Namespace) -> int:
     _kinematics_tables()
+    _arm_simulations(args)
     return 0
 
 
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``demo`` sub-command."""
-    p = sub.add_parser("demo", help="run the main job: reproduce the report in simulation")
+    p = sub.add_parser(
+        "demo",
+        help="run the main job: reproduce the report in simulation",
+        description="Print the report's kinematic tables reproduced, then simulate every task "
+        "of the tasks folder with every trajectory type: MP4s, run reports, plots, a summary.",
+    )
+    p.add_argument("--tasks", type=Path, default=Path("tasks"), help="folder of task files")
+    p.add_argument("--out", type=Path, default=Path("videos"), help="output folder")
+    p.add_argument("--quality", choices=("fast", "default"), default="default")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_demo)

@@ -11,8 +11,8 @@ import math
 from pathlib import Path
 
 import numpy as np
-import numpy.typing as npt
 
+from lynxsim.cli.units import Units, add_unit_flags, check_finite, json_list
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr import (
     N_MODES,
@@ -35,55 +35,9 @@ DEFAULT_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
 """The orientations of the report's Figure 21 [deg]."""
 
 
-class _Units:
-    """Conversion between SI and the units shown at the command line."""
-
-    def __init__(self, si: bool) -> None:
-        self.si = si
-        self.length = "m" if si else "mm"
-        self.angle = "rad" if si else "deg"
-        self._length_scale = 1.0 if si else 1e3
-
-    def length_in(self, v: float) -> float:
-        return v / self._length_scale
-
-    def angle_in(self, v: float) -> float:
-        return v if self.si else math.radians(v)
-
-    def length_out(self, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        return np.asarray(v, dtype=float) * self._length_scale
-
-    def angle_out(self, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
-        a = np.asarray(v, dtype=float)
-        return a if self.si else np.degrees(a)
-
-    def fmt_length(self, v: float) -> str:
-        return f"{v:.6f}" if self.si else f"{v:.2f}"
-
-    def fmt_angle(self, v: float) -> str:
-        return f"{v:.5f}" if self.si else f"{v:.2f}"
-
-
-def _finite(values: list[float], what: str) -> None:
-    if not all(math.isfinite(v) for v in values):
-        raise InvalidInputError(f"{what} must be finite numbers, got {values}")
-
-
-def _add_units(p: argparse.ArgumentParser) -> None:
-    p.add_argument(
-        "--si", action="store_true", help="inputs and outputs in m and rad instead of mm and deg"
-    )
-    p.add_argument("--json", action="store_true", help="machine-readable output, units labelled")
-
-
-def _json_list(a: npt.NDArray[np.float64]) -> list[float]:
-    out: list[float] = np.round(a, 9).tolist()
-    return out
-
-
 def _ik(args: argparse.Namespace) -> int:
-    u = _Units(args.si)
-    _finite([args.x, args.y, args.alpha], "platform pose")
+    u = Units(args.si)
+    check_finite([args.x, args.y, args.alpha], "platform pose")
     pose = np.array([u.length_in(args.x), u.length_in(args.y), u.angle_in(args.alpha)])
     result = ik(pose)
     result.raise_for_status()
@@ -97,13 +51,13 @@ def _ik(args: argparse.Namespace) -> int:
                 {
                     "units": {"length": u.length, "angle": u.angle},
                     "pose": {"x": args.x, "y": args.y, "alpha": args.alpha},
-                    "leg_span": _json_list(spans),
+                    "leg_span": json_list(spans),
                     "serial_measure": round(serial, 9),
                     "modes": [
                         {
                             "mode": m,
                             "elbow_signs": mode_label(m),
-                            "theta": _json_list(theta[m]),
+                            "theta": json_list(theta[m]),
                             "parallel_measure": round(float(meas.parallel[m]), 9),
                         }
                         for m in range(N_MODES)
@@ -132,8 +86,8 @@ def _ik(args: argparse.Namespace) -> int:
 
 
 def _fk(args: argparse.Namespace) -> int:
-    u = _Units(args.si)
-    _finite(args.theta, "actuated angles")
+    u = Units(args.si)
+    check_finite(args.theta, "actuated angles")
     theta = np.array([u.angle_in(v) for v in args.theta])
     sol = fk_all(theta)
     count = int(sol.num_solutions)
@@ -176,7 +130,7 @@ def _workspace(args: argparse.Namespace) -> int:
     from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
     from lynxsim.rrr import workspace_map
 
-    _finite(list(args.alpha_deg) + [args.resolution_mm], "--alpha-deg and --resolution-mm")
+    check_finite(list(args.alpha_deg) + [args.resolution_mm], "--alpha-deg and --resolution-mm")
     if args.resolution_mm <= 0.0:
         raise InvalidInputError(f"--resolution-mm must be positive, got {args.resolution_mm}")
     alphas = [math.radians(a) for a in args.alpha_deg]
@@ -265,7 +219,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument("x", type=float, metavar="X")
     p.add_argument("y", type=float, metavar="Y")
     p.add_argument("alpha", type=float, metavar="ALPHA")
-    _add_units(p)
+    add_unit_flags(p)
     p.set_defaults(handler=_ik)
 
     p = rrr_sub.add_parser(
@@ -274,7 +228,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         description="Forward kinematics of the actuated angles THETA1..3 [deg] (--si: rad).",
     )
     p.add_argument("theta", type=float, nargs=3, metavar=("THETA1", "THETA2", "THETA3"))
-    _add_units(p)
+    add_unit_flags(p)
     p.set_defaults(handler=_fk)
 
     p = rrr_sub.add_parser(

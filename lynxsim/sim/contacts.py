@@ -43,30 +43,29 @@ class ContactTracker:
             return frozenset()
         geoms = np.asarray(data.contact.geom[:n])
         dist = np.asarray(data.contact.dist[:n])
-        touching = dist <= 0.0  # contacts inside the margin but apart do not count
-        robot = self._b.robot_geoms[geoms]
-        obstacle = self._b.obstacle_geoms[geoms]
-        support = self._b.support_geoms[geoms]
+        robot = self._b.robot_geoms[geoms]  # (n, 2)
+        obstacle = self._b.obstacle_geoms[geoms].any(axis=1)
+        both_robot = robot.all(axis=1)
+        support = self._b.support_geoms[geoms].any(axis=1)
+        # Contacts inside the margin but apart (dist > 0) do not count as touching.
+        wanted = (dist <= 0.0) & robot.any(axis=1) & (obstacle | both_robot | support)
         t = float(data.time)
         hit: set[int] = set()
-        for k in np.flatnonzero(touching & robot.any(axis=1)):
-            g1, g2 = (int(g) for g in geoms[k])
-            r1, r2 = bool(robot[k, 0]), bool(robot[k, 1])
-            if not r1:  # robot geom first
-                g1, g2, r1, r2 = g2, g1, r2, r1
+        for k in np.flatnonzero(wanted):
+            g1, g2 = int(geoms[k, 0]), int(geoms[k, 1])
+            if not robot[k, 0]:  # robot geom first
+                g1, g2 = g2, g1
             pen = float(-dist[k])
-            if obstacle[k].any():
+            if obstacle[k]:
                 table = self._obstacle
                 hit.add(g1)
                 if self._first is None:
                     self._first = (t, (g1, g2))
-            elif r2:
+            elif both_robot[k]:
                 table = self._self
                 g1, g2 = min(g1, g2), max(g1, g2)
-            elif support[k].any():
-                table = self._support
             else:
-                continue
+                table = self._support
             stats = table.get((g1, g2))
             if stats is None:
                 table[(g1, g2)] = _PairStats(t, pen)

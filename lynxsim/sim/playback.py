@@ -17,7 +17,7 @@ import mujoco
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.errors import InvalidInputError
+from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.contacts import ContactTracker
 from lynxsim.sim.report import RunReport
@@ -30,6 +30,8 @@ StepHook = Callable[[int, mujoco.MjData, frozenset[int]], None]
 """Called after each physics step with (step index, data, bodies touching the obstacle)."""
 
 _CLEARANCE_MAX_M = 1.0
+RANGE_TOL = 1e-6
+"""Commands may exceed a joint range by this much [rad] (rounding of the samples)."""
 
 
 @dataclass(frozen=True)
@@ -75,6 +77,64 @@ def _warnings(data: mujoco.MjData) -> dict[str, int]:
     return out
 
 
+def _clearance(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    robot_ids: npt.NDArray[np.intp],
+    obstacle_ids: npt.NDArray[np.intp],
+    rbound: FloatArray,
+    fromto: FloatArray,
+) -> float:
+    """Smallest robot–obstacle distance [m] (negative: penetration).
+
+    Robot bounding spheres against the obstacles' boxes give a lower bound for
+    every pair; exact distances
+    (``mj_geomDistance``) are computed in order of that bound until the next
+    bound exceeds the best distance found, so far-away geoms cost nothing.
+    """
+    xpos = np.asarray(data.geom_xpos)
+    # World-aligned boxes around the obstacle geoms (from their local AABBs).
+    aabb = np.asarray(model.geom_aabb)[obstacle_ids]  # (m, 6): centre, half sizes
+    rot = np.asarray(data.geom_xmat)[obstacle_ids].reshape(-1, 3, 3)
+    centre = xpos[obstacle_ids] + np.einsum("mij,mj->mi", rot, aabb[:, :3])
+    half = np.einsum("mij,mj->mi", np.abs(rot), aabb[:, 3:])
+    outside = np.abs(xpos[robot_ids, None, :] - centre[None]) - half[None]  # (r, m, 3)
+    gaps = np.linalg.norm(np.maximum(outside, 0.0), axis=-1)
+    bounds = gaps - rbound[robot_ids, None]
+    best = _CLEARANCE_MAX_M
+    for flat in np.argsort(bounds, axis=None):
+        i, j = divmod(int(flat), len(obstacle_ids))
+        if bounds[i, j] >= best:
+            break
+        d = mujoco.mj_geomDistance(
+            model, data, int(robot_ids[i]), int(obstacle_ids[j]), best, fromto
+        )
+        best = min(best, d)
+    return best
+
+
+def _check_ranges(
+    model: mujoco.MjModel, binding: RobotBinding, q_cmd: FloatArray, dt: float
+) -> None:
+    """Refuse commands outside the actuators' control ranges (= joint ranges)."""
+    lo, hi = np.asarray(model.actuator_ctrlrange)[binding.actuator_ids].T
+    excess = np.maximum(lo - q_cmd, q_cmd - hi)  # (T, n), > 0 outside
+    k, j = np.unravel_index(int(np.argmax(excess)), excess.shape)
+    worst = float(excess[k, j])
+    if worst > RANGE_TOL:
+        name = model.actuator(int(binding.actuator_ids[j])).name
+        raise LimitViolationError(
+            f"command leaves the range of joint {j + 1} ({name}) by {np.degrees(worst):.3f} deg "
+            f"at t = {k * dt:.3f} s; refused before playback",
+            joint=int(j) + 1,
+            quantity="position",
+            time=k * dt,
+            segment=-1,
+            value=float(q_cmd[k, j]),
+            limit=float(lo[j] if q_cmd[k, j] < lo[j] else hi[j]),
+        )
+
+
 def play(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -117,6 +177,7 @@ def play(
 
     Raises:
         InvalidInputError: Shapes disagree, or commands are not finite.
+        LimitViolationError: A command leaves its joint's range (names joint and time).
     """
     q_cmd = np.asarray(q_cmd, dtype=float)
     tool_ref = np.asarray(tool_ref, dtype=float)
@@ -128,6 +189,7 @@ def play(
     if not (np.isfinite(q_cmd).all() and np.isfinite(tool_ref).all()):
         raise InvalidInputError("commands must be finite")
     dt = float(model.opt.timestep)
+    _check_ranges(model, binding, q_cmd, dt)
     settle_steps = round(settle_s / dt)
     steps = len(q_cmd) + settle_steps
 
@@ -147,7 +209,8 @@ def play(
     tracker = ContactTracker(model, binding)
     robot_ids = np.flatnonzero(binding.robot_geoms)
     obstacle_ids = np.flatnonzero(binding.obstacle_geoms)
-    pairs = [(int(r), int(o)) for r in robot_ids for o in obstacle_ids]
+    pairs = len(robot_ids) > 0 and len(obstacle_ids) > 0
+    rbound = np.asarray(model.geom_rbound)
     fromto = np.zeros(6)
 
     log_q = np.empty((steps, n))
@@ -176,10 +239,7 @@ def play(
         log_force[k] = data.actuator_force[binding.actuator_ids]
         touching = tracker.update(data)
         if pairs:
-            clearance[k] = min(
-                mujoco.mj_geomDistance(model, data, r, o, _CLEARANCE_MAX_M, fromto)
-                for r, o in pairs
-            )
+            clearance[k] = _clearance(model, data, robot_ids, obstacle_ids, rbound, fromto)
         if extra_metrics is not None:
             for key, value in extra_metrics(data).items():
                 extra[key] = max(extra.get(key, -np.inf), value)

@@ -1,0 +1,91 @@
+"""The main job: every task of ``tasks/`` simulated with every trajectory type.
+
+Writes, under one output folder, an MP4 and a JSON run report per run, joint
+profile plots and a tool-path comparison per task; returns the reports for the
+summary table. Used by ``lynxsim demo``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from lynxsim.errors import LynxsimError
+from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
+from lynxsim.sim.arm_task import run_arm_trajectory
+from lynxsim.sim.render import RenderSettings
+from lynxsim.sim.report import RunReport
+from lynxsim.tasks import Task, load_task
+from lynxsim.traj import Trajectory, TrajectoryKind, build_trajectory
+
+__all__ = ["DemoRun", "arm_runs", "find_tasks", "run_arm_demo"]
+
+
+def find_tasks(folder: Path, robot: str) -> list[Task]:
+    """Every task file of ``folder`` for ``robot``, sorted by file name."""
+    tasks = [load_task(p) for p in sorted(folder.glob("*.toml"))]
+    return [t for t in tasks if t.robot == robot]
+
+
+@dataclass(frozen=True)
+class DemoRun:
+    """One simulation of the demo: a task with one trajectory type."""
+
+    task: Task
+    trajectory: Trajectory
+
+    @property
+    def stem(self) -> str:
+        """File name stem of its outputs."""
+        return f"{self.task.name}_{self.trajectory.kind.value}"
+
+
+def arm_runs(tasks: list[Task], skipped: Callable[[str], None]) -> Iterator[DemoRun]:
+    """Every (task, type) pair that can be built; reports the others to ``skipped``."""
+    for task in tasks:
+        for kind in TrajectoryKind:
+            try:
+                yield DemoRun(task, build_trajectory(task, kind))
+            except LynxsimError as exc:
+                skipped(f"{task.name} {kind.value}: {exc}")
+
+
+def run_arm_demo(
+    runs: list[DemoRun],
+    out: Path,
+    render: RenderSettings,
+    progress: Callable[[int, float], None] | None = None,
+) -> list[RunReport]:
+    """Simulate and record each run; plot each task's profiles and path comparison.
+
+    Args:
+        runs: From :func:`arm_runs`.
+        out: Output folder (videos, reports; plots in ``out/plots``).
+        render: Video settings.
+        progress: Called as ``progress(run index, fraction of that run)``.
+
+    Returns:
+        The run reports, in the order of ``runs``.
+    """
+    plots = out / "plots"
+    reports = []
+    for i, run in enumerate(runs):
+        plot_joint_profiles(run.trajectory, plots / f"{run.stem}.png")
+        playback = run_arm_trajectory(
+            run.trajectory,
+            task=run.task.name,
+            video=out / f"{run.stem}.mp4",
+            render=render,
+            progress=None if progress is None else (lambda f, i=i: progress(i, f)),
+        )
+        playback.report.write_json(out / f"{run.stem}.json")
+        reports.append(playback.report)
+    by_task: dict[str, dict[str, Trajectory]] = {}
+    for run in runs:
+        by_task.setdefault(run.task.name, {})[run.trajectory.kind.value] = run.trajectory
+    for name, trajectories in by_task.items():
+        plot_tool_paths(
+            trajectories, plots / f"{name}_paths.png", title=f"{name}: tool paths of every type"
+        )
+    return reports

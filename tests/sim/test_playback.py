@@ -1,0 +1,120 @@
+"""Playback through the position actuators: tracking, the obstacle verdict, refusals."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+
+from lynxsim.errors import LimitViolationError
+from lynxsim.sim import load_arm_scene
+from lynxsim.sim.arm_playback import arm_binding, play_arm
+from lynxsim.sim.arm_task import run_arm_trajectory
+from lynxsim.sim.playback import play
+from lynxsim.tasks import load_task
+from lynxsim.traj import ArmPose, TrajectoryKind, build_trajectory, generate
+
+ROOT = Path(__file__).resolve().parents[2]
+PICK_AND_PLACE = ROOT / "tasks" / "pick_and_place.toml"
+VIA_POINTS = ROOT / "tasks" / "obstacle_avoidance.toml"
+
+MAX_TOOL_ERROR_M = 5e-3
+"""Issue 4, item 4: the tool's largest tracking error on the quintic pick-and-place."""
+FINAL_TOOL_ERROR_M = 1e-3
+"""Issue 4, item 4: the tool's error after 0.5 s of settling."""
+
+
+@pytest.fixture(scope="module")
+def pick_and_place():
+    return load_task(PICK_AND_PLACE)
+
+
+def test_quintic_pick_and_place_tracks_within_bounds(pick_and_place):
+    trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
+    assert trajectory.segment_durations.tolist() == [1.0, 1.0, 1.0, 1.0]
+    report = run_arm_trajectory(trajectory, task="pick_and_place", obstacle=None).report
+    assert report.tool_max_error_m <= MAX_TOOL_ERROR_M
+    assert report.tool_final_error_m <= FINAL_TOOL_ERROR_M
+    assert report.settle_s == pytest.approx(0.5)
+    # No servo saturates: every peak torque stays below its datasheet stall torque.
+    assert max(report.max_torque_ratio) < 1.0
+    assert report.healthy
+    assert report.obstacle is None
+
+
+@pytest.mark.parametrize("kind", list(TrajectoryKind), ids=[k.value for k in TrajectoryKind])
+def test_plain_task_hits_the_obstacle_between_p2_and_p3(pick_and_place, kind):
+    trajectory = build_trajectory(pick_and_place, kind)
+    report = play_arm(load_arm_scene(cube=False), trajectory, task="pick_and_place").report
+    assert report.collided
+    t_p2, t_p3 = trajectory.waypoint_times[1:3]
+    assert t_p2 < report.obstacle.first_time_s < t_p3
+    robot_geom, obstacle_geom = report.obstacle.first_pair
+    assert obstacle_geom == "obstacle"
+    assert robot_geom.endswith("_collision")
+    assert report.obstacle.max_penetration_m > 0.0
+    assert report.min_clearance_m < 0.0
+    assert report.healthy
+
+
+def test_via_points_with_straight_lines_clear_the_obstacle():
+    trajectory = build_trajectory(load_task(VIA_POINTS), TrajectoryKind.LINE)
+    report = play_arm(load_arm_scene(cube=False), trajectory, task="via").report
+    assert not report.collided
+    assert report.obstacle.steps_in_contact == 0
+    # The report's via points pass the cylinder closely but clear it.
+    assert 0.005 < report.min_clearance_m < 0.05
+    assert report.healthy
+
+
+def test_path_far_from_the_obstacle_does_not_touch_it():
+    poses = [
+        ArmPose((0.0, -0.25, 0.3), 0.0),
+        ArmPose((0.0, -0.3, 0.0), -math.pi / 2),
+    ]
+    trajectory = generate("quintic", poses, 1.0)
+    report = play_arm(load_arm_scene(cube=False), trajectory, task="far").report
+    assert not report.collided
+    assert report.min_clearance_m > 0.1
+
+
+def test_scene_without_obstacle_never_reports_one(pick_and_place):
+    trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
+    report = play_arm(load_arm_scene(obstacle=None, cube=False), trajectory, task="p").report
+    assert report.obstacle is None
+    assert not report.collided
+    assert report.min_clearance_m is None
+
+
+def test_commands_outside_the_joint_ranges_are_refused_before_playback():
+    model = load_arm_scene(cube=False)
+    data = mujoco.MjData(model)
+    q_cmd = np.zeros((100, 5))
+    q_cmd[60:, 2] = 0.2  # elbow range is [-145, 0] deg
+    with pytest.raises(
+        LimitViolationError, match=r"joint 3 \(elbow\) by 11\.459 deg at t = 0\.120"
+    ):
+        play(model, data, arm_binding(model), q_cmd, np.zeros((100, 3)), task="t", trajectory="t")
+    assert data.time == 0.0  # nothing was simulated
+
+
+def test_report_round_trips_through_json(tmp_path, pick_and_place):
+    trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
+    report = play_arm(load_arm_scene(cube=False), trajectory, task="p").report
+    data = json.loads(report.write_json(tmp_path / "r.json").read_text())
+    assert data["collided"] is True
+    assert data["obstacle"]["first_pair"][1] == "obstacle"
+    assert len(data["joint_max_error_rad"]) == 5
+    assert set(data) >= {
+        "tool_max_error_m",
+        "tool_rms_error_m",
+        "tool_final_error_m",
+        "min_clearance_m",
+        "self_collisions",
+        "floor_contacts",
+        "healthy",
+    }

@@ -1,0 +1,88 @@
+"""``lynxsim play`` and ``lynxsim demo`` from the command line."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import imageio.v2 as imageio
+
+from lynxsim.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+
+SHORT_TASK = """
+name = "short"
+robot = "arm"
+[trajectory]
+type = "quintic"
+segment_duration_s = 1.0
+stretch = true
+[[poses]]
+position_mm = [0.0, -250.0, 300.0]
+pitch_deg = 0.0
+[[poses]]
+position_mm = [0.0, -300.0, 0.0]
+pitch_deg = -90.0
+"""
+
+
+def test_play_json_reports_collision_and_exits_zero(capsys):
+    code = main(["play", str(ROOT / "tasks" / "pick_and_place.toml"), "--no-video", "--json"])
+    assert code == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["collided"] is True
+    assert report["trajectory"] == "quintic"
+    assert report["obstacle"]["first_pair"][1] == "obstacle"
+    assert report["healthy"] is True
+
+
+def test_play_prints_table_and_writes_video_and_report(tmp_path, capsys):
+    task = tmp_path / "short.toml"
+    task.write_text(SHORT_TASK)
+    video = tmp_path / "short.mp4"
+    argv = ["play", str(task), "--type", "ruckig", "--out", str(video), "--quality", "fast"]
+    assert main([*argv, "--quiet"]) == 0
+    out = capsys.readouterr().out
+    assert "obstacle: clear" in out
+    assert "tool tracking error: max" in out
+    assert json.loads(video.with_suffix(".json").read_text())["trajectory"] == "ruckig"
+    assert imageio.get_reader(video).count_frames() > 30
+
+
+def test_play_bad_task_file_is_one_line_naming_file_and_field(tmp_path):
+    task = tmp_path / "bad.toml"
+    task.write_text(SHORT_TASK.replace("pitch_deg = -90.0", 'pitch_deg = "down"'))
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--no-video"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert proc.returncode != 0
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1, proc.stderr
+    assert "bad.toml" in lines[0]
+    assert "poses[1].pitch_deg" in lines[0]
+
+
+def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
+    tasks = tmp_path / "tasks"
+    tasks.mkdir()
+    (tasks / "short.toml").write_text(SHORT_TASK)
+    out = tmp_path / "out"
+    assert (
+        main(["demo", "--tasks", str(tasks), "--out", str(out), "--quality", "fast", "--quiet"])
+        == 0
+    )
+    printed = capsys.readouterr().out
+    kinds = ["free", "cubic", "quintic", "lspb", "line", "ruckig"]
+    for kind in kinds:
+        assert (out / f"short_{kind}.mp4").is_file()
+        assert (out / f"short_{kind}.json").is_file()
+        assert (out / "plots" / f"short_{kind}.png").is_file()
+        assert f"short                {kind}" in printed
+    assert (out / "plots" / "short_paths.png").is_file()
+    assert "Table 4" in printed
