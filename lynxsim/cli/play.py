@@ -6,10 +6,14 @@ import argparse
 import json
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from lynxsim.sim.report import RunReport
+
+if TYPE_CHECKING:
+    from lynxsim.tasks import Task
 
 __all__ = ["SUMMARY_HEADER", "format_report", "progress_bar", "register", "summary_row"]
 
@@ -66,6 +70,7 @@ def format_report(report: RunReport) -> str:
     ):
         names = ", ".join(f"{p.geom1}/{p.geom2}" for p in pairs) or "none"
         lines.append(f"{label}: {names}")
+    lines.extend(_format_extra(report.extra))
     health = "healthy" if report.healthy else "NOT healthy"
     if report.diverged_at_s is not None:
         health += f": diverged at {report.diverged_at_s:.3f} s"
@@ -73,6 +78,23 @@ def format_report(report: RunReport) -> str:
         health += f", MuJoCo warnings {report.warnings}"
     lines.append(f"simulation: {health}")
     return "\n".join(lines)
+
+
+def _format_extra(extra: dict[str, float]) -> list[str]:
+    """Robot-specific figures, one per line, in mm and degrees where the name says m or rad."""
+    lines = []
+    for key, value in extra.items():
+        for suffix, unit, scale in (
+            ("_rad_s", "deg/s", float(np.degrees(1.0))),
+            ("_rad", "deg", float(np.degrees(1.0))),
+            ("_m", "mm", 1e3),
+        ):
+            if key.endswith(suffix):
+                lines.append(f"{key.removesuffix(suffix)}: {value * scale:.4g} {unit}")
+                break
+        else:
+            lines.append(f"{key}: {value:g}")
+    return lines
 
 
 def progress_bar(label: str, disable: bool) -> tuple[Callable[[float], None], Callable[[], None]]:
@@ -95,6 +117,8 @@ def _play(args: argparse.Namespace) -> int:
     from lynxsim.traj import build_trajectory
 
     task = load_task(args.task)
+    if task.robot == "rrr":
+        return _play_rrr(args, task)
     trajectory = build_trajectory(task, args.type)
     video = (
         None
@@ -108,12 +132,42 @@ def _play(args: argparse.Namespace) -> int:
             task=task.name,
             obstacle=None if args.no_obstacle else REPORT_OBSTACLE,
             video=video,
-            render=RenderSettings(camera=args.camera, quality=Quality(args.quality), fps=args.fps),
+            render=RenderSettings(
+                camera=args.camera or "front", quality=Quality(args.quality), fps=args.fps
+            ),
             progress=update,
         )
     finally:
         close()
-    report = playback.report
+    return _print_run(args, playback.report, video)
+
+
+def _play_rrr(args: argparse.Namespace, task: Task) -> int:
+    from lynxsim.sim.render import Quality, RenderSettings
+    from lynxsim.sim.rrr_task import path_from_task, run_rrr_path
+
+    path = path_from_task(task, args.type)
+    video = (
+        None if args.no_video else (args.out or Path("videos") / f"{task.name}_{path.label}.mp4")
+    )
+    update, close = progress_bar(f"{task.name} {path.label}", args.json or args.quiet)
+    try:
+        playback = run_rrr_path(
+            path,
+            task=task.name,
+            mode=args.mode,
+            video=video,
+            render=RenderSettings(
+                camera=args.camera or "top", quality=Quality(args.quality), fps=args.fps
+            ),
+            progress=update,
+        )
+    finally:
+        close()
+    return _print_run(args, playback.report, video)
+
+
+def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None) -> int:
     if video is not None:
         report.write_json(Path(video).with_suffix(".json"))
     if args.json:
@@ -142,7 +196,17 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument("--out", type=Path, default=None, help="MP4 path (default videos/TASK_TYPE.mp4)")
     p.add_argument("--no-video", action="store_true", help="simulate only")
     p.add_argument("--no-obstacle", action="store_true", help="the scene without the cylinder")
-    p.add_argument("--camera", default="front", help="camera name (front, top)")
+    p.add_argument(
+        "--camera", default=None, help="camera name: front, top (default front; top for rrr tasks)"
+    )
+    p.add_argument(
+        "--mode",
+        type=int,
+        choices=range(8),
+        default=7,
+        metavar="0..7",
+        help="rrr tasks: working mode of the inverse kinematics (default 7, the report's)",
+    )
     p.add_argument(
         "--quality",
         choices=("fast", "default"),

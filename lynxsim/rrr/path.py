@@ -1,0 +1,541 @@
+"""Platform paths of the 3-RRR robot in task space, timed, and the actuated angles along them.
+
+The 3-RRR robot is planned in task space, ``(x, y, alpha)`` in SI units, and
+converted to actuated angles by the inverse kinematics in one working mode at
+every physics step (:func:`actuated_path`). Two path shapes, both timed with
+the rest-to-rest quintic ``s(u) = 10 u^3 - 15 u^4 + 6 u^5`` of
+:func:`lynxsim.traj.polynomial.quintic_scaling`:
+
+* **stop at every pose** (a task's ``type = "quintic"``): a straight segment in
+  ``(x, y, alpha)`` from each pose to the next, each with its own quintic time
+  law, so the platform rests at every pose;
+* **pass through** (``type = "quintic"`` with ``pass_through = true``): one C2
+  cubic spline through all poses, parametrised by arc length in
+  ``(x, y, r_p alpha)``, periodic when the last pose equals the first (a
+  smooth closed curve), travelled with one quintic time law over the whole
+  path (rest at its ends only).
+
+This module is pure numpy (it lives in :mod:`lynxsim.sim` beside the 3-RRR
+playback that uses it).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.errors import (
+    InvalidInputError,
+    NonFiniteInputError,
+    SegmentDurationError,
+    TrajectoryError,
+    UnreachablePlatformPoseError,
+)
+from lynxsim.rrr import RRR_ROBOT, RRRGeometry, ik, singularity_measures
+from lynxsim.rrr.geometry import as_pose_array
+from lynxsim.rrr.ik import wrap_angle
+from lynxsim.traj.kinds import TrajectoryKind
+from lynxsim.traj.polynomial import quintic_scaling
+
+__all__ = [
+    "DEFAULT_PLATFORM_LIMITS",
+    "RRR_TRAJECTORY_KINDS",
+    "ActuatedPath",
+    "PathSample",
+    "PlatformLimits",
+    "PlatformPath",
+    "PlatformPathError",
+    "actuated_path",
+    "actuated_window",
+    "platform_path",
+    "wrap_to_window",
+]
+
+FloatArray = npt.NDArray[np.float64]
+
+RRR_TRAJECTORY_KINDS = (TrajectoryKind.QUINTIC,)
+"""Trajectory types a 3-RRR task may name (planned in task space, see the module docs)."""
+
+_QUINTIC_PEAK_VEL = 15.0 / 8.0
+"""Peak of ds/du of the rest-to-rest quintic."""
+_QUINTIC_PEAK_ACC = 10.0 / math.sqrt(3.0)
+"""Peak of |d2s/du2| of the rest-to-rest quintic."""
+_SAME_POSE_TOL = 1e-9
+"""First and last pose closer than this [m, rad] make a closed (periodic) path."""
+
+
+class PlatformPathError(TrajectoryError, ValueError):
+    """A platform path the robot cannot follow in the chosen working mode.
+
+    Raised when the path crosses a parallel singularity (the platform would
+    leave its assembly mode) or needs an actuated angle outside the actuators'
+    range.
+
+    Attributes:
+        time_s: When along the path the problem starts [s].
+        pose: The platform pose there, (x, y, alpha) [m, m, rad].
+    """
+
+    def __init__(self, message: str, *, time_s: float, pose: tuple[float, float, float]) -> None:
+        super().__init__(message)
+        self.time_s = time_s
+        self.pose = pose
+
+
+@dataclass(frozen=True)
+class PlatformLimits:
+    """Task-space limits used to choose segment durations that are not given.
+
+    Attributes:
+        speed: Platform-centre speed [m/s].
+        angular_speed: Platform rotation rate [rad/s].
+        acceleration: Platform-centre acceleration [m/s^2].
+        angular_acceleration: Platform angular acceleration [rad/s^2].
+    """
+
+    speed: float = 0.15
+    angular_speed: float = 1.0
+    acceleration: float = 1.0
+    angular_acceleration: float = 6.0
+
+    def __post_init__(self) -> None:
+        for name in ("speed", "angular_speed", "acceleration", "angular_acceleration"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0.0):
+                raise InvalidInputError(f"platform limit {name} must be positive, got {value!r}")
+
+
+DEFAULT_PLATFORM_LIMITS = PlatformLimits()
+"""Moderate limits: 0.15 m/s, 1 rad/s, 1 m/s^2, 6 rad/s^2 (the report gives none)."""
+
+
+class PathSample(NamedTuple):
+    """Platform states at a batch of times, shape (T, 3) each.
+
+    Attributes:
+        pose: Poses (x, y, alpha) [m, m, rad].
+        velocity: Their time derivatives [m/s, m/s, rad/s].
+        acceleration: Second derivatives [m/s^2, m/s^2, rad/s^2].
+    """
+
+    pose: FloatArray
+    velocity: FloatArray
+    acceleration: FloatArray
+
+
+def _quintic(u: FloatArray) -> FloatArray:
+    """``s, ds/du, d2s/du2`` of the rest-to-rest quintic, shape (3, n)."""
+    out: FloatArray = quintic_scaling(np.clip(u, 0.0, 1.0))[:3]
+    return out
+
+
+def _metric(geometry: RRRGeometry) -> FloatArray:
+    """Weights turning (dx, dy, dalpha) into lengths [m]: alpha counts at the platform radius."""
+    return np.array([1.0, 1.0, geometry.platform_radius])
+
+
+def _spline_second_derivatives(u: FloatArray, y: FloatArray, closed: bool) -> FloatArray:
+    """Second derivatives at the knots of a cubic spline through ``y`` (natural or periodic).
+
+    Args:
+        u: Knots, strictly increasing, shape (N,).
+        y: Values, shape (N, 3).
+        closed: Periodic conditions (``y[0] == y[-1]``) instead of natural ends.
+
+    Returns:
+        Shape (N, 3).
+    """
+    n = len(u)
+    h = np.diff(u)
+    slope = np.diff(y, axis=0) / h[:, None]
+    m = np.zeros_like(y)
+    if closed:
+        k = n - 1  # unknowns M_0 .. M_{n-2}; M_{n-1} = M_0
+        a = np.zeros((k, k))
+        rhs = np.empty((k, 3))
+        for i in range(k):
+            hp, hn = h[i - 1], h[i]  # h[-1] is the last interval: periodic wrap
+            a[i, (i - 1) % k] += hp
+            a[i, i] += 2.0 * (hp + hn)
+            a[i, (i + 1) % k] += hn
+            rhs[i] = 6.0 * (slope[i] - slope[i - 1])
+        m[:k] = np.linalg.solve(a, rhs)
+        m[k] = m[0]
+    elif n > 2:
+        k = n - 2  # interior unknowns; natural ends M_0 = M_{n-1} = 0
+        a = np.zeros((k, k))
+        for i in range(k):
+            a[i, i] = 2.0 * (h[i] + h[i + 1])
+            if i > 0:
+                a[i, i - 1] = h[i]
+            if i < k - 1:
+                a[i, i + 1] = h[i + 1]
+        m[1:-1] = np.linalg.solve(a, 6.0 * (slope[1:] - slope[:-1]))
+    return m
+
+
+@dataclass(frozen=True, eq=False)
+class PlatformPath:
+    """A timed platform path through waypoints (see the module docs for its two shapes).
+
+    Build one with :func:`platform_path`.
+
+    Attributes:
+        waypoints: The poses, shape (N, 3) [m, m, rad], N >= 2.
+        names: Their names.
+        durations: Time from each pose to the next, shape (N - 1,) [s]; with
+            ``through`` only their sum matters.
+        through: Pass through the intermediate poses without stopping (one spline).
+        closed: The path ends where it started and (with ``through``) is a
+            periodic spline.
+        geometry: The robot (its platform radius weighs alpha in the arc length).
+    """
+
+    waypoints: FloatArray
+    names: tuple[str, ...]
+    durations: FloatArray
+    through: bool
+    closed: bool
+    geometry: RRRGeometry = field(default=RRR_ROBOT, repr=False, compare=False)
+    _knots: FloatArray = field(default_factory=lambda: np.zeros(0), repr=False, compare=False)
+    _curvature: FloatArray = field(
+        default_factory=lambda: np.zeros((0, 3)), repr=False, compare=False
+    )
+
+    @property
+    def duration(self) -> float:
+        """Total time [s]."""
+        return float(self.durations.sum())
+
+    @property
+    def kind(self) -> TrajectoryKind:
+        """The trajectory type of this path (always quintic timing)."""
+        return TrajectoryKind.QUINTIC
+
+    @property
+    def label(self) -> str:
+        """Short name of the path shape, e.g. ``"quintic"`` or ``"quintic-spline"``."""
+        return "quintic-spline" if self.through else "quintic"
+
+    @property
+    def arc_length(self) -> float:
+        """Length of the path in ``(x, y, r_p alpha)`` [m] (spline: by its knots)."""
+        if self.through:
+            return float(self._knots[-1])
+        d = np.diff(self.waypoints, axis=0) * _metric(self.geometry)
+        return float(np.linalg.norm(d, axis=1).sum())
+
+    def _spline(self, u: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Spline value and first two derivatives by arc length at ``u``, each (T, 3)."""
+        knots, y, m = self._knots, self.waypoints, self._curvature
+        k = np.clip(np.searchsorted(knots, u, side="right") - 1, 0, len(knots) - 2)
+        h = (knots[k + 1] - knots[k])[:, None]
+        a = (knots[k + 1][:, None] - u[:, None]) / h
+        b = 1.0 - a
+        m0, m1 = m[k], m[k + 1]
+        y0, y1 = y[k], y[k + 1]
+        value = a * y0 + b * y1 + ((a**3 - a) * m0 + (b**3 - b) * m1) * h**2 / 6.0
+        d1 = (y1 - y0) / h - (3.0 * a**2 - 1.0) * h * m0 / 6.0 + (3.0 * b**2 - 1.0) * h * m1 / 6.0
+        d2 = a * m0 + b * m1
+        return value, d1, d2
+
+    def sample(self, t: npt.ArrayLike) -> PathSample:
+        """Poses, velocities and accelerations at times ``t``.
+
+        Args:
+            t: Times from the path's start, shape (T,) [s]; clipped to [0, duration].
+
+        Returns:
+            The :class:`PathSample`.
+        """
+        times = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, self.duration)
+        if self.through:
+            total = self.duration
+            s, ds, dds = _quintic(times / total)
+            length = self._knots[-1]
+            u = s * length
+            u_dot = ds * length / total
+            u_ddot = dds * length / total**2
+            value, d1, d2 = self._spline(u)
+            return PathSample(
+                pose=value,
+                velocity=d1 * u_dot[:, None],
+                acceleration=d2 * (u_dot**2)[:, None] + d1 * u_ddot[:, None],
+            )
+        starts = np.concatenate([[0.0], np.cumsum(self.durations)])
+        k = np.clip(np.searchsorted(starts, times, side="right") - 1, 0, len(self.durations) - 1)
+        dur = self.durations[k]
+        s, ds, dds = _quintic((times - starts[k]) / dur)
+        delta = self.waypoints[k + 1] - self.waypoints[k]
+        return PathSample(
+            pose=self.waypoints[k] + delta * s[:, None],
+            velocity=delta * (ds / dur)[:, None],
+            acceleration=delta * (dds / dur**2)[:, None],
+        )
+
+
+def _shortest_segments(waypoints: FloatArray, limits: PlatformLimits) -> FloatArray:
+    """Shortest quintic duration of each straight segment within ``limits``, (N - 1,) [s]."""
+    d = np.diff(waypoints, axis=0)
+    dxy = np.hypot(d[:, 0], d[:, 1])
+    da = np.abs(d[:, 2])
+    out: FloatArray = np.max(
+        [
+            _QUINTIC_PEAK_VEL * dxy / limits.speed,
+            _QUINTIC_PEAK_VEL * da / limits.angular_speed,
+            np.sqrt(_QUINTIC_PEAK_ACC * dxy / limits.acceleration),
+            np.sqrt(_QUINTIC_PEAK_ACC * da / limits.angular_acceleration),
+        ],
+        axis=0,
+    )
+    return out
+
+
+def _shortest_spline(path: PlatformPath, limits: PlatformLimits) -> float:
+    """Shortest total duration of a spline path within ``limits`` (a safe bound) [s]."""
+    length = float(path._knots[-1])
+    u = np.linspace(0.0, length, 2001)
+    _, d1, d2 = path._spline(u)
+    lin1, ang1 = np.hypot(d1[:, 0], d1[:, 1]).max(), np.abs(d1[:, 2]).max()
+    lin2, ang2 = np.hypot(d2[:, 0], d2[:, 1]).max(), np.abs(d2[:, 2]).max()
+    v = _QUINTIC_PEAK_VEL * length
+    a2 = v**2
+    a1 = _QUINTIC_PEAK_ACC * length
+    return float(
+        max(
+            v * lin1 / limits.speed,
+            v * ang1 / limits.angular_speed,
+            math.sqrt((a2 * lin2 + a1 * lin1) / limits.acceleration),
+            math.sqrt((a2 * ang2 + a1 * ang1) / limits.angular_acceleration),
+        )
+    )
+
+
+def platform_path(
+    waypoints: npt.ArrayLike,
+    durations: float | Sequence[float] | None = None,
+    *,
+    names: Sequence[str] | None = None,
+    through: bool = False,
+    stretch: bool = False,
+    limits: PlatformLimits = DEFAULT_PLATFORM_LIMITS,
+    geometry: RRRGeometry = RRR_ROBOT,
+) -> PlatformPath:
+    """A timed task-space path through platform poses.
+
+    Args:
+        waypoints: Poses (x, y, alpha), shape (N, 3) [m, m, rad], N >= 2;
+            consecutive poses must differ.
+        durations: Time per segment [s] (one for all, or N - 1 values), or
+            None for the shortest within ``limits``. With ``through`` the path
+            takes their sum.
+        names: Waypoint names (default ``P1``, ``P2``, ...).
+        through: One spline through every pose instead of stopping at each.
+        stretch: Lengthen durations that are too short for ``limits`` instead
+            of raising.
+        limits: Task-space limits for missing or stretched durations.
+        geometry: The robot (platform radius for the arc length).
+
+    Returns:
+        The :class:`PlatformPath`.
+
+    Raises:
+        InvalidInputError: Bad shapes, repeated consecutive poses, bad durations.
+        NonFiniteInputError: A pose or duration is NaN or infinite.
+        SegmentDurationError: A given duration breaks ``limits`` and ``stretch``
+            is false (``joint`` is the axis 1..3 = x, y, alpha that needs longest).
+    """
+    w = as_pose_array(waypoints, "waypoints")
+    if w.ndim != 2 or len(w) < 2:
+        raise InvalidInputError(f"waypoints must have shape (N, 3) with N >= 2, got {w.shape}")
+    if not np.isfinite(w).all():
+        raise NonFiniteInputError(f"waypoints must be finite, got {w.tolist()}")
+    n_seg = len(w) - 1
+    labels = tuple(names) if names is not None else tuple(f"P{i + 1}" for i in range(len(w)))
+    if len(labels) != len(w):
+        raise InvalidInputError(f"got {len(labels)} names for {len(w)} waypoints")
+    step = np.linalg.norm(np.diff(w, axis=0) * _metric(geometry), axis=1)
+    if (step < _SAME_POSE_TOL).any():
+        i = int(np.argmax(step < _SAME_POSE_TOL))
+        raise InvalidInputError(
+            f"waypoints {labels[i]!r} and {labels[i + 1]!r} are the same pose; remove one"
+        )
+    closed = bool(np.linalg.norm((w[-1] - w[0]) * _metric(geometry)) < _SAME_POSE_TOL)
+    knots = np.zeros(0)
+    curvature = np.zeros((0, 3))
+    if through:
+        knots = np.concatenate([[0.0], np.cumsum(step)])
+        curvature = _spline_second_derivatives(knots, w, closed)
+
+    given: FloatArray | None = None
+    if durations is not None:
+        given = np.asarray(durations, dtype=float)
+        if given.ndim == 0:
+            given = np.full(n_seg, float(given))
+        if given.shape != (n_seg,):
+            raise InvalidInputError(
+                f"expected one duration or {n_seg} segment durations, got shape {given.shape}"
+            )
+        if not np.isfinite(given).all():
+            raise NonFiniteInputError(f"segment durations must be finite, got {given.tolist()}")
+        if (given <= 0.0).any():
+            raise InvalidInputError(f"segment durations must be positive, got {given.tolist()}")
+
+    def build(d: FloatArray) -> PlatformPath:
+        return PlatformPath(w, labels, d, through, closed, geometry, knots, curvature)
+
+    if through:
+        shortest = _shortest_spline(build(np.ones(n_seg)), limits)
+        if given is None:
+            return build(np.full(n_seg, shortest / n_seg))
+        total = float(given.sum())
+        if total < shortest:
+            if not stretch:
+                raise SegmentDurationError(
+                    f"the path through {len(w)} poses needs at least {shortest:.3f} s within "
+                    f"the platform limits, got {total:.3f} s (set stretch to lengthen it)",
+                    segment=0,
+                    joint=1,
+                    given=total,
+                    required=shortest,
+                )
+            given = given * (shortest / total)
+        return build(given)
+
+    shortest_seg = _shortest_segments(w, limits)
+    if given is None:
+        return build(shortest_seg)
+    short = given < shortest_seg * (1.0 - 1e-12)
+    if short.any() and not stretch:
+        i = int(np.argmax(short))
+        d = np.abs(np.diff(w, axis=0)[i])
+        axis = int(
+            np.argmax([d[0] / limits.speed, d[1] / limits.speed, d[2] / limits.angular_speed])
+        )
+        raise SegmentDurationError(
+            f"segment {labels[i]} -> {labels[i + 1]} needs at least {shortest_seg[i]:.3f} s within "
+            f"the platform limits, got {given[i]:.3f} s (set stretch to lengthen it)",
+            segment=i,
+            joint=axis + 1,
+            given=float(given[i]),
+            required=float(shortest_seg[i]),
+        )
+    return build(np.maximum(given, shortest_seg))
+
+
+def actuated_window(geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
+    """Centre of each actuated angle's range: direction from ``B_i`` to ``C_b``, (3,) [rad].
+
+    Leg ``i``'s actuated angle is kept in ``[centre_i - pi, centre_i + pi]``
+    (the actuators' ``ctrlrange`` in ``models/rrr/rrr.xml``), so that no
+    command wraps.
+    """
+    d = np.asarray(geometry.base_centre) - geometry.base
+    out: FloatArray = np.arctan2(d[:, 1], d[:, 0])
+    return out
+
+
+def wrap_to_window(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
+    """Actuated angles moved by whole turns into their ranges, shape (..., 3) [rad]."""
+    centre = actuated_window(geometry)
+    out: FloatArray = centre + wrap_angle(np.asarray(theta, dtype=float) - centre)
+    return out
+
+
+class ActuatedPath(NamedTuple):
+    """Actuated angles along a sampled platform path in one working mode.
+
+    Attributes:
+        theta: Actuated angles, shape (T, 3) [rad], continuous in time, in the
+            actuators' ranges (:func:`actuated_window`).
+        min_abs_parallel: Smallest ``|parallel measure|`` along the path [-]
+            (0 at a parallel singularity; see :mod:`lynxsim.rrr.jacobian`).
+        min_serial: Smallest serial measure along the path [-] (0 where a leg
+            is fully stretched or folded).
+    """
+
+    theta: FloatArray
+    min_abs_parallel: float
+    min_serial: float
+
+
+def actuated_path(
+    poses: npt.ArrayLike,
+    mode: int,
+    *,
+    times: npt.ArrayLike | None = None,
+    geometry: RRRGeometry = RRR_ROBOT,
+) -> ActuatedPath:
+    """Inverse kinematics of every sample of a platform path in one working mode.
+
+    Args:
+        poses: Platform poses, shape (T, 3) [m, m, rad], densely sampled.
+        mode: Working mode 0..7.
+        times: Their times [s], (T,), for error messages (sample index if None).
+        geometry: The robot description.
+
+    Returns:
+        The :class:`ActuatedPath`.
+
+    Raises:
+        UnreachablePlatformPoseError: A sample is out of reach (names the legs).
+        PlatformPathError: The path crosses a parallel singularity, or an
+            actuated angle would leave its range.
+        InvalidInputError: Bad shape or mode.
+    """
+    p = as_pose_array(poses, "poses")
+    if p.ndim != 2 or len(p) == 0:
+        raise InvalidInputError(f"poses must have shape (T, 3), got {p.shape}")
+    if not (isinstance(mode, int | np.integer) and 0 <= int(mode) <= 7):
+        raise InvalidInputError(f"working mode must be an integer in 0..7, got {mode!r}")
+    t = np.arange(len(p), dtype=float) if times is None else np.asarray(times, dtype=float)
+    unit = "sample" if times is None else "t ="
+
+    def where(i: int) -> str:
+        return f"{unit} {t[i]:.3f}{'' if times is None else ' s'}"
+
+    result = ik(p, geometry)
+    if not result.ok.all():
+        i = int(np.argmin(result.ok))
+        try:
+            result.raise_for_status(i)
+        except UnreachablePlatformPoseError as exc:
+            raise UnreachablePlatformPoseError(
+                f"path leaves the workspace at {where(i)}: {exc}", legs=exc.legs
+            ) from None
+    theta = np.unwrap(result.theta[:, int(mode), :], axis=0)
+    theta += wrap_to_window(theta[0], geometry) - theta[0]
+    centre = actuated_window(geometry)
+    outside = np.abs(theta - centre) > math.pi
+    if outside.any():
+        i = int(np.argmax(outside.any(axis=1)))
+        leg = int(np.argmax(outside[i])) + 1
+        raise PlatformPathError(
+            f"leg {leg}'s actuated angle leaves its range "
+            f"[{math.degrees(centre[leg - 1] - math.pi):.0f}, "
+            f"{math.degrees(centre[leg - 1] + math.pi):.0f}] deg at {where(i)}",
+            time_s=float(t[i]),
+            pose=(float(p[i, 0]), float(p[i, 1]), float(p[i, 2])),
+        )
+    meas = singularity_measures(p, theta, geometry)
+    sign = np.sign(meas.parallel)
+    if (sign != sign[0]).any() or (sign == 0).any():
+        i = int(np.argmax((sign != sign[0]) | (sign == 0)))
+        x, y, a = p[i]
+        raise PlatformPathError(
+            f"path crosses a parallel singularity of working mode {mode} at {where(i)} "
+            f"(x {x * 1e3:.1f} mm, y {y * 1e3:.1f} mm, alpha {math.degrees(a):.1f} deg): "
+            "the platform would leave its assembly mode",
+            time_s=float(t[i]),
+            pose=(float(x), float(y), float(a)),
+        )
+    return ActuatedPath(
+        theta=theta,
+        min_abs_parallel=float(np.abs(meas.parallel).min()),
+        min_serial=float(meas.serial.min()),
+    )

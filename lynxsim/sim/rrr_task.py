@@ -1,0 +1,194 @@
+"""Running a 3-RRR task end to end: task-space path, physics, report, optional video."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Callable, Iterator
+
+import mujoco
+import numpy as np
+
+from lynxsim.errors import InvalidInputError
+from lynxsim.rrr.path import (
+    DEFAULT_PLATFORM_LIMITS,
+    RRR_TRAJECTORY_KINDS,
+    PlatformLimits,
+    PlatformPath,
+    platform_path,
+)
+from lynxsim.sim.playback import Playback, StepHook
+from lynxsim.sim.recording import FrameRecorder
+from lynxsim.sim.render import RenderSettings, SceneRenderer
+from lynxsim.sim.rrr_playback import play_rrr, start_model
+from lynxsim.sim.rrr_scene import HOME_MODE, RRRIds
+from lynxsim.sim.video import mp4_writer
+from lynxsim.tasks import PlanarPose, Task
+from lynxsim.traj.kinds import TrajectoryKind
+
+__all__ = ["DEFAULT_RRR_RENDER", "path_from_task", "run_rrr_path", "run_rrr_task"]
+
+ProgressFn = Callable[[float], None]
+"""Called with the fraction of the run done, 0..1."""
+
+DEFAULT_RRR_RENDER = RenderSettings(camera="top")
+"""Video defaults for the 3-RRR: 640x480 at 30 frames/s from the orthographic top camera."""
+
+
+def path_from_task(
+    task: Task,
+    kind: TrajectoryKind | str | None = None,
+    limits: PlatformLimits = DEFAULT_PLATFORM_LIMITS,
+) -> PlatformPath:
+    """The timed platform path of a 3-RRR task.
+
+    Args:
+        task: A task with ``robot = "rrr"`` (:func:`lynxsim.tasks.load_task`).
+        kind: Trajectory type overriding the task's; only
+            :data:`~lynxsim.rrr.path.RRR_TRAJECTORY_KINDS` are planned for the 3-RRR.
+        limits: Task-space limits for missing or stretched durations.
+
+    Returns:
+        The :class:`~lynxsim.rrr.path.PlatformPath` (``pass_through`` gives
+        one spline through the poses).
+
+    Raises:
+        InvalidInputError: The task is not for the 3-RRR, or the type is not
+            planned for it (the message lists those that are).
+        SegmentDurationError: A duration is too short and ``stretch`` is off.
+    """
+    if task.robot != "rrr":
+        raise InvalidInputError(
+            f"task {task.name!r} is for robot {task.robot!r}; this runs robot 'rrr' tasks"
+        )
+    names = [k.value for k in TrajectoryKind]
+    if kind is not None and str(kind) not in names:
+        raise InvalidInputError(
+            f"unknown trajectory type {kind!r}; expected one of: {', '.join(names)}"
+        )
+    chosen = task.trajectory if kind is None else TrajectoryKind(kind)
+    if chosen not in RRR_TRAJECTORY_KINDS:
+        raise InvalidInputError(
+            f"trajectory type {chosen.value!r} is not planned for the 3-RRR robot; "
+            f"expected one of: {', '.join(k.value for k in RRR_TRAJECTORY_KINDS)}"
+        )
+    poses = [p for p in task.poses if isinstance(p, PlanarPose)]
+    return platform_path(
+        np.array([[p.x, p.y, p.alpha] for p in poses]),
+        task.durations,
+        names=[p.name for p in poses],
+        through=task.pass_through,
+        stretch=task.stretch,
+        limits=limits,
+    )
+
+
+def _progress_hook(total_s: float, dt: float, progress: ProgressFn | None) -> StepHook | None:
+    if progress is None:
+        return None
+    every = max(1, round(0.05 * total_s / dt))
+
+    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
+        if step % every == 0:
+            progress(min(1.0, data.time / total_s))
+
+    return hook
+
+
+@contextlib.contextmanager
+def _recorder(
+    model: mujoco.MjModel,
+    video: str | os.PathLike[str] | None,
+    settings: RenderSettings,
+    targets: np.ndarray,
+) -> Iterator[FrameRecorder | None]:
+    if video is None:
+        yield None
+        return
+    with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
+        yield FrameRecorder(renderer, sink, RRRIds.from_model(model).centre_site, targets)
+
+
+def run_rrr_path(
+    path: PlatformPath,
+    *,
+    task: str,
+    mode: int = HOME_MODE,
+    video: str | os.PathLike[str] | None = None,
+    render: RenderSettings = DEFAULT_RRR_RENDER,
+    settle_s: float = 0.5,
+    progress: ProgressFn | None = None,
+) -> Playback:
+    """Play a platform path in the 3-RRR scene and optionally record it.
+
+    The video traces the needle tip above the platform centre and marks the
+    path's poses.
+
+    Args:
+        path: The timed platform path.
+        task: Task name for the report.
+        mode: Working mode 0..7 of the inverse kinematics.
+        video: MP4 path, or None for no video.
+        render: Frame size, camera (``top`` or ``front``), quality and fps.
+        settle_s: Hold time after the path [s].
+        progress: Called with the fraction done.
+
+    Returns:
+        The :class:`~lynxsim.sim.playback.Playback` (report ``extra``: see
+        :data:`lynxsim.sim.rrr_playback.RRR_EXTRA_KEYS`).
+    """
+    model, _ = start_model(path, mode)
+    ids = RRRIds.from_model(model)
+    data = mujoco.MjData(model)
+    data.qpos[:] = model.qpos0
+    mujoco.mj_kinematics(model, data)
+    height = float(data.site_xpos[ids.centre_site][2])
+    targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
+    hook = _progress_hook(path.duration + settle_s, float(model.opt.timestep), progress)
+    with _recorder(model, video, render, targets) as recorder:
+        hooks = [h for h in (recorder, hook) if h is not None]
+
+        def on_step(step: int, d: mujoco.MjData, touching: frozenset[int]) -> None:
+            for h in hooks:
+                h(step, d, touching)
+
+        playback = play_rrr(
+            path,
+            mode,
+            task=task,
+            model=model,
+            data=data,
+            settle_s=settle_s,
+            on_step=on_step if hooks else None,
+        )
+    if progress is not None:
+        progress(1.0)
+    return playback
+
+
+def run_rrr_task(
+    task: Task,
+    *,
+    kind: TrajectoryKind | str | None = None,
+    mode: int = HOME_MODE,
+    video: str | os.PathLike[str] | None = None,
+    render: RenderSettings = DEFAULT_RRR_RENDER,
+    settle_s: float = 0.5,
+    progress: ProgressFn | None = None,
+) -> Playback:
+    """Plan a 3-RRR task's path and play it (see :func:`path_from_task`, :func:`run_rrr_path`).
+
+    Raises:
+        InvalidInputError: Not an rrr task, or a type not planned for it.
+        UnreachablePlatformPoseError: The path leaves the workspace.
+        PlatformPathError: It crosses a parallel singularity of ``mode``.
+    """
+    return run_rrr_path(
+        path_from_task(task, kind),
+        task=task.name,
+        mode=mode,
+        video=video,
+        render=render,
+        settle_s=settle_s,
+        progress=progress,
+    )
