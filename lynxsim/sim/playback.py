@@ -229,6 +229,9 @@ def play(
         if gripper is not None and gripper_cmd is not None:
             data.ctrl[gripper] = gripper_cmd(k * dt)
         mujoco.mj_step(model, data)
+        # mj_step leaves positions of the state it started from: bring sites and
+        # geoms to the new qpos so that they match data.time and the command.
+        mujoco.mj_kinematics(model, data)
         if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
             diverged_at = float(data.time)
             recorded = k
