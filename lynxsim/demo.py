@@ -16,16 +16,10 @@ from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.sim.arm_task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
-from lynxsim.tasks import Task, load_task
+from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory, TrajectoryKind, build_trajectory
 
-__all__ = ["DemoRun", "arm_runs", "find_tasks", "run_arm_demo"]
-
-
-def find_tasks(folder: Path, robot: str) -> list[Task]:
-    """Every task file of ``folder`` for ``robot``, sorted by file name."""
-    tasks = [load_task(p) for p in sorted(folder.glob("*.toml"))]
-    return [t for t in tasks if t.robot == robot]
+__all__ = ["DemoRun", "arm_runs", "run_arm_demo"]
 
 
 @dataclass(frozen=True)

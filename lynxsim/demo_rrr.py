@@ -3,6 +3,7 @@
 Writes, under one output folder, per task of ``tasks/`` with ``robot = "rrr"``
 an MP4 from the orthographic ``top`` camera with the platform's path traced,
 its JSON run report and, in ``plots/``, the path drawn over its workspace;
+the workspace maps of the report's Figure 21 orientations in ``plots/``;
 and ``rrr_figure20_simulation.txt``, the simulation's verdicts on the
 report's Figure 20 poses. Returns the run reports for the summary table.
 """
@@ -10,33 +11,39 @@ report's Figure 20 poses. Returns the run reports for the summary table.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from lynxsim.fileio import atomic_path
-from lynxsim.plots.rrr import plot_rrr_path
+from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.rrr import mode_label
+from lynxsim.rrr.workspace import workspace_maps
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.sim.rrr_scene import HOME_MODE
 from lynxsim.sim.rrr_task import path_from_task, run_rrr_path
 from lynxsim.sim.rrr_verify import figure20_simulation, format_figure20_simulation
-from lynxsim.tasks import Task, load_task
+from lynxsim.tasks import find_tasks
 
-__all__ = ["FIGURE20_FILE", "PATH_PLOT_SAMPLES", "rrr_tasks", "run_rrr_demo"]
+__all__ = [
+    "FIGURE20_FILE",
+    "PATH_PLOT_SAMPLES",
+    "WORKSPACE_ALPHAS_DEG",
+    "WORKSPACE_RESOLUTION_M",
+    "run_rrr_demo",
+]
 
 FIGURE20_FILE = "rrr_figure20_simulation.txt"
 """Name of the Figure 20 verdicts file in the output folder."""
 PATH_PLOT_SAMPLES = 400
 """Samples of each path drawn in its plot."""
-
-
-def rrr_tasks(folder: Path) -> list[Task]:
-    """Every task file of ``folder`` for the 3-RRR robot, sorted by file name."""
-    tasks = [load_task(p) for p in sorted(Path(folder).glob("*.toml"))]
-    return [t for t in tasks if t.robot == "rrr"]
+WORKSPACE_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
+"""The orientations of the report's Figure 21 [deg]."""
+WORKSPACE_RESOLUTION_M = 0.002
+"""Grid step of the demo's workspace maps [m]."""
 
 
 def _run_progress(
@@ -77,7 +84,7 @@ def run_rrr_demo(
     out = Path(out)
     settings = dataclasses.replace(render, camera="top")
     reports = []
-    for i, task in enumerate(rrr_tasks(tasks)):
+    for i, task in enumerate(find_tasks(tasks, "rrr")):
         path = path_from_task(task)
         stem = f"{task.name}_{path.label}"
         poses = path.sample(np.linspace(0.0, path.duration, PATH_PLOT_SAMPLES)).pose
@@ -98,6 +105,11 @@ def run_rrr_demo(
         )
         playback.report.write_json(out / f"{stem}.json")
         reports.append(playback.report)
+    alphas = [math.radians(a) for a in WORKSPACE_ALPHAS_DEG]
+    maps = workspace_maps(alphas, view_extent(alphas), WORKSPACE_RESOLUTION_M)
+    for wmap, alpha_deg in zip(maps, WORKSPACE_ALPHAS_DEG):
+        plot_rrr_workspace([wmap], out / "plots" / f"rrr_workspace_alpha{alpha_deg:+.0f}.png")
+    plot_rrr_workspace(maps, out / "plots" / "rrr_workspace.png", mode=mode)
     with atomic_path(out / FIGURE20_FILE) as tmp:
         tmp.write_text(format_figure20_simulation(figure20_simulation()) + "\n")
     return reports

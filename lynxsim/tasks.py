@@ -42,7 +42,7 @@ from lynxsim.errors import TaskFileError
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.waypoints import ArmPose, JointPose
 
-__all__ = ["PlanarPose", "Robot", "Task", "TaskPose", "load_task"]
+__all__ = ["PlanarPose", "Robot", "Task", "TaskPose", "find_tasks", "load_task"]
 
 Robot = Literal["arm", "rrr"]
 """The robots a task can name."""
@@ -247,6 +247,16 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         description=description,
         source=Path(path),
     )
+
+
+def find_tasks(folder: str | os.PathLike[str], robot: Robot) -> list[Task]:
+    """Every task file (``*.toml``) of ``folder`` for ``robot``, sorted by file name.
+
+    Raises:
+        TaskFileError: A task file in the folder is malformed (names file and field).
+    """
+    tasks = [load_task(p) for p in sorted(Path(folder).glob("*.toml"))]
+    return [t for t in tasks if t.robot == robot]
 
 
 def load_task(path: str | os.PathLike[str]) -> Task:

@@ -83,6 +83,9 @@ def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
         assert (out / f"short_{kind}.mp4").is_file()
         assert (out / f"short_{kind}.json").is_file()
         assert (out / "plots" / f"short_{kind}.png").is_file()
-        assert f"short                {kind}" in printed
+        assert f"short                {kind:14s}" in printed
     assert (out / "plots" / "short_paths.png").is_file()
     assert "Table 4" in printed
+    for alpha in ("+0", "+20", "-20", "+50", "-50"):
+        assert (out / "plots" / f"rrr_workspace_alpha{alpha}.png").is_file()
+    assert "e (300 mm, 250 mm, -40 deg): simulation says UNREACHABLE" in printed

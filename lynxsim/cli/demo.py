@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -46,33 +47,42 @@ def _kinematics_tables() -> None:
     )
 
 
-def _arm_simulations(args: argparse.Namespace) -> None:
+def _simulations(args: argparse.Namespace) -> None:
     from tqdm import tqdm
 
     from lynxsim.cli.play import SUMMARY_HEADER, summary_row
-    from lynxsim.demo import arm_runs, find_tasks, run_arm_demo
+    from lynxsim.demo import arm_runs, run_arm_demo
+    from lynxsim.demo_rrr import FIGURE20_FILE, run_rrr_demo
     from lynxsim.sim.render import Quality, RenderSettings
+    from lynxsim.tasks import find_tasks
 
     runs = list(arm_runs(find_tasks(args.tasks, "arm"), lambda m: print(f"skipped: {m}")))
-    print(f"\nSimulating {len(runs)} arm runs into {args.out}/ (MP4, JSON reports, plots/)")
-    with tqdm(total=len(runs), unit="run", disable=args.quiet, file=sys.stderr) as bar:
+    n_rrr = len(find_tasks(args.tasks, "rrr"))
+    total = len(runs) + n_rrr
+    render = RenderSettings(quality=Quality(args.quality))
+    print(f"\nSimulating {len(runs)} arm runs and {n_rrr} 3-RRR runs into {args.out}/")
+    with tqdm(total=total, unit="run", disable=args.quiet, file=sys.stderr) as bar:
 
-        def progress(i: int, fraction: float) -> None:
-            bar.n = min(len(runs), i + fraction)
-            bar.set_postfix_str(runs[i].stem)
-            bar.refresh()
+        def progress(offset: int) -> Callable[[int, float], None]:
+            def update(i: int, fraction: float) -> None:
+                bar.n = min(total, offset + i + fraction)
+                bar.refresh()
 
-        reports = run_arm_demo(
-            runs, args.out, RenderSettings(quality=Quality(args.quality)), progress
-        )
+            return update
+
+        reports = run_arm_demo(runs, args.out, render, progress(0))
+        reports += run_rrr_demo(args.out, render, progress(len(runs)), tasks=args.tasks)
     print(SUMMARY_HEADER)
     for report in reports:
         print(summary_row(report))
+    print(f"\n3-RRR Figure 20 poses judged by simulation: {args.out / FIGURE20_FILE}")
+    print((args.out / FIGURE20_FILE).read_text().rstrip())
+    print(f"\nVideos and JSON reports in {args.out}/, plots in {args.out / 'plots'}/")
 
 
 def _demo(args: argparse.Namespace) -> int:
     _kinematics_tables()
-    _arm_simulations(args)
+    _simulations(args)
     return 0
 
 

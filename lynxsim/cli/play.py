@@ -18,7 +18,7 @@ if TYPE_CHECKING:
 __all__ = ["SUMMARY_HEADER", "format_report", "progress_bar", "register", "summary_row"]
 
 SUMMARY_HEADER = (
-    f"{'task':20s} {'type':8s} {'duration':>9s} {'max err':>8s} {'final':>7s} "
+    f"{'task':20s} {'type':14s} {'duration':>9s} {'max err':>8s} {'final':>7s} "
     f"{'collision':>9s} {'clearance':>10s} {'healthy':>7s}"
 )
 
@@ -28,7 +28,7 @@ def summary_row(report: RunReport) -> str:
     clearance = "-" if report.min_clearance_m is None else f"{report.min_clearance_m * 1e3:.1f} mm"
     collided = "-" if report.obstacle is None else ("YES" if report.collided else "no")
     return (
-        f"{report.task:20s} {report.trajectory:8s} {report.duration_s:7.2f} s "
+        f"{report.task:20s} {report.trajectory:14s} {report.duration_s:7.2f} s "
         f"{report.tool_max_error_m * 1e3:5.1f} mm {report.tool_final_error_m * 1e3:4.1f} mm "
         f"{collided:>9s} {clearance:>10s} {'yes' if report.healthy else 'NO':>7s}"
     )

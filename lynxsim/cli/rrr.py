@@ -13,7 +13,6 @@ from pathlib import Path
 import numpy as np
 
 from lynxsim.cli.units import Units, add_unit_flags, check_finite, json_list
-from lynxsim.errors import InvalidInputError
 from lynxsim.rrr import (
     N_MODES,
     RRR_ROBOT,
@@ -128,19 +127,11 @@ def _fk(args: argparse.Namespace) -> int:
 
 def _workspace(args: argparse.Namespace) -> int:
     from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
-    from lynxsim.rrr import workspace_map
+    from lynxsim.rrr.workspace import workspace_maps
 
     check_finite(list(args.alpha_deg) + [args.resolution_mm], "--alpha-deg and --resolution-mm")
-    if args.resolution_mm <= 0.0:
-        raise InvalidInputError(f"--resolution-mm must be positive, got {args.resolution_mm}")
     alphas = [math.radians(a) for a in args.alpha_deg]
-    x0, x1, y0, y1 = view_extent(alphas)
-    step = args.resolution_mm * 1e-3
-    if (x1 - x0) / step * (y1 - y0) / step > 5e7:
-        raise InvalidInputError(f"--resolution-mm {args.resolution_mm} makes too large a grid")
-    xs = np.arange(x0, x1 + step / 2, step)
-    ys = np.arange(y0, y1 + step / 2, step)
-    maps = [workspace_map(xs, ys, a) for a in alphas]
+    maps = workspace_maps(alphas, view_extent(alphas), args.resolution_mm * 1e-3)
     plot_rrr_workspace(maps, args.out, mode=args.mode)
     for wmap in maps:
         alpha_deg = math.degrees(wmap.alpha)

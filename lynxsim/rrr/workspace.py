@@ -36,6 +36,7 @@ __all__ = [
     "leg_annuli",
     "parallel_singularity_loci",
     "workspace_map",
+    "workspace_maps",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -287,3 +288,42 @@ def parallel_singularity_loci(wmap: WorkspaceMap, mode: int) -> list[FloatArray]
     gen = contourpy.contour_generator(wmap.x, wmap.y, z, line_type="Separate")
     lines = gen.lines(0.0)
     return [np.asarray(line, dtype=float) for line in lines]
+
+
+MAX_GRID_POINTS = 50_000_000
+"""Largest grid :func:`workspace_maps` accepts (points per orientation)."""
+
+
+def workspace_maps(
+    alphas: Sequence[float],
+    extent: tuple[float, float, float, float],
+    resolution: float,
+    geometry: RRRGeometry = RRR_ROBOT,
+) -> list[WorkspaceMap]:
+    """Constant-orientation workspaces of several orientations on one grid.
+
+    Args:
+        alphas: Platform orientations [rad].
+        extent: ``(x_min, x_max, y_min, y_max)`` of the grid [m] (e.g. from
+            :func:`grid_extent`).
+        resolution: Grid step [m] (> 0).
+        geometry: The robot description.
+
+    Returns:
+        One :class:`WorkspaceMap` per orientation, in order.
+
+    Raises:
+        InvalidInputError: A non-finite orientation, a step that is not positive,
+            or a grid larger than :data:`MAX_GRID_POINTS`.
+    """
+    if not (math.isfinite(resolution) and resolution > 0.0):
+        raise InvalidInputError(f"grid resolution must be positive, got {resolution} m")
+    x0, x1, y0, y1 = extent
+    xs = np.arange(x0, x1 + resolution / 2, resolution)
+    ys = np.arange(y0, y1 + resolution / 2, resolution)
+    if xs.size * ys.size > MAX_GRID_POINTS:
+        raise InvalidInputError(
+            f"a {resolution * 1e3:g} mm grid over that area has {xs.size * ys.size:,} points "
+            f"(at most {MAX_GRID_POINTS:,})"
+        )
+    return [workspace_map(xs, ys, a, geometry) for a in alphas]
