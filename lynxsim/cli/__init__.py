@@ -13,7 +13,7 @@ import sys
 from collections.abc import Sequence
 from typing import NoReturn
 
-from lynxsim.cli import arm, demo, play, rrr, traj
+from lynxsim.cli import arm, demo, env, play, rrr, traj
 from lynxsim.errors import LynxsimError
 
 __all__ = ["main"]
@@ -37,7 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
         "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
     )
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_OneLineParser)
-    for module in (arm, traj, play, rrr, demo):
+    for module in (arm, traj, play, rrr, demo, env):
         module.register(sub)
     return parser
 

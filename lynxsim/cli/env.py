@@ -1,0 +1,79 @@
+"""``lynxsim env``: run a policy in a Gymnasium env and report success, return and collisions."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
+from lynxsim.errors import InvalidInputError
+
+__all__ = ["register"]
+
+
+def _run(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from lynxsim.envs.evaluation import EpisodeStats, evaluate
+
+    if args.episodes <= 0:
+        raise InvalidInputError(f"--episodes must be positive, got {args.episodes}")
+    env_kwargs = {"obstacle": None} if args.no_obstacle else {}
+    done = successes = 0
+    with tqdm(total=args.episodes, unit="ep", disable=args.quiet, file=sys.stderr) as bar:
+
+        def on_episode(stats: EpisodeStats) -> None:
+            nonlocal done, successes
+            done += 1
+            successes += stats.success
+            bar.update(1)
+            bar.set_postfix(success=f"{successes / done:.0%}")
+
+        summary = evaluate(
+            args.env,
+            args.policy,
+            args.episodes,
+            args.seed,
+            video=args.video,
+            video_episodes=args.video_episodes,
+            env_kwargs=env_kwargs,
+            on_episode=on_episode,
+        )
+    last = args.seed + args.episodes - 1
+    print(
+        f"{args.env}, {args.policy} policy, {args.episodes} episodes (seeds {args.seed}..{last})"
+        f"{', no obstacle' if args.no_obstacle else ''}"
+    )
+    print(f"  success rate     {summary.success_rate:.1%} (last step of each episode)")
+    print(f"  mean return      {summary.mean_return:.2f}")
+    print(
+        f"  collisions       {summary.collision_episodes} episodes, "
+        f"{summary.collision_steps} steps with arm-obstacle contact (every physics step checked)"
+    )
+    if args.video is not None:
+        shown = min(args.video_episodes, args.episodes)
+        print(f"  video            {args.video} ({shown} episode{'s' if shown > 1 else ''})")
+    return 0
+
+
+def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    """Add the ``env`` sub-command."""
+    p = sub.add_parser(
+        "env",
+        help="run the scripted expert or a random policy in a Gymnasium env",
+        description="Run seeded episodes (seeds S, S+1, ...) of a lynxsim Gymnasium env with "
+        "the scripted expert or uniformly random actions; print the success rate, the mean "
+        "return and the arm-obstacle collisions.",
+    )
+    p.add_argument("--policy", choices=("expert", "random"), default="expert")
+    p.add_argument("--episodes", type=int, default=10, help="number of episodes (default 10)")
+    p.add_argument("--env", choices=ENV_IDS, default=PICK_AND_PLACE_ID, help="the env id")
+    p.add_argument("--seed", type=int, default=0, help="seed of the first episode (default 0)")
+    p.add_argument("--video", type=Path, default=None, help="MP4 file of the first episode(s)")
+    p.add_argument(
+        "--video-episodes", type=int, default=1, help="episodes recorded into --video (default 1)"
+    )
+    p.add_argument("--no-obstacle", action="store_true", help="remove the cylinder obstacle")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(handler=_run)

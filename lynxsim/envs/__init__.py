@@ -1,0 +1,44 @@
+"""Gymnasium environments of the arm: ``LynxPickAndPlace-v0`` and ``LynxReach-v0``.
+
+This package's import is light (registration only); the env classes, the
+scripted experts and the evaluation helpers load, with MuJoCo, on first use.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import Any
+
+from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID, REACH_ID, register_envs
+
+__all__ = [
+    "ENV_IDS",
+    "PICK_AND_PLACE_ID",
+    "REACH_ID",
+    "EpisodeStats",
+    "EvaluationSummary",
+    "PickAndPlaceEnv",
+    "PickAndPlaceExpert",
+    "ReachEnv",
+    "ReachExpert",
+    "evaluate",
+    "record_expert_episode",
+    "register_envs",
+]
+
+_LAZY = {
+    "PickAndPlaceEnv": "lynxsim.envs.pick_and_place",
+    "ReachEnv": "lynxsim.envs.reach",
+    "PickAndPlaceExpert": "lynxsim.envs.expert",
+    "ReachExpert": "lynxsim.envs.expert",
+    "EpisodeStats": "lynxsim.envs.evaluation",
+    "EvaluationSummary": "lynxsim.envs.evaluation",
+    "evaluate": "lynxsim.envs.evaluation",
+    "record_expert_episode": "lynxsim.envs.evaluation",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module 'lynxsim.envs' has no attribute {name!r}")

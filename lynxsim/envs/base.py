@@ -1,0 +1,534 @@
+"""The machinery the arm envs share: scene, timing, control, contacts, the step loop.
+
+:class:`LynxArmEnv` owns one :class:`mujoco.MjModel`/:class:`mujoco.MjData` pair
+built by :func:`lynxsim.sim.load_arm_scene`. A task subclass says whether the
+scene holds the cube and the gripper is commanded, draws the task at reset
+(:meth:`LynxArmEnv._sample_task`) and assembles the observation
+(:meth:`LynxArmEnv._observation`). Controllers live in :mod:`lynxsim.envs.control`,
+rewards in :mod:`lynxsim.envs.reward`, rendering in :mod:`lynxsim.envs.rendering`.
+The step loop resolves nothing by name and allocates only the arrays it returns:
+ids are resolved once, physics runs as ``mj_step(model, data, nstep=frame_skip)``,
+and the observation is built from one ``tolist()`` of ``qpos`` and ``qvel``.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+from typing import Any, ClassVar, Literal
+
+import gymnasium as gym
+import numpy as np
+import numpy.typing as npt
+
+# lynxsim.sim chooses the GL backend (MUJOCO_GL), which mujoco reads when first imported.
+import lynxsim.sim  # noqa: F401
+
+# isort: split
+import mujoco  # type: ignore[import-untyped]
+
+from lynxsim.arm import LYNX_ARM
+from lynxsim.envs.control import (
+    ControlMode,
+    JointSpaceController,
+    TargetStatus,
+    ToolSpaceController,
+)
+from lynxsim.envs.kinematics import ik_nearest, tool_pose_of
+from lynxsim.envs.rendering import RENDER_MODES, EnvRenderer
+from lynxsim.envs.reward import RewardType, collision_flags, goal_distance, goal_reward
+from lynxsim.envs.workspace import (
+    GRIP_ROLL_RAD,
+    TOP_DOWN_PITCH_RAD,
+    PolarRegion,
+    clear_of_obstacle,
+    sample_points,
+    top_down_reachable,
+)
+from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
+from lynxsim.sim import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_spec, table_top_z
+from lynxsim.sim.arm_playback import arm_binding
+from lynxsim.sim.arm_task import GRIPPER_OPEN_M
+from lynxsim.sim.render import Quality, RenderSettings
+
+__all__ = ["READY_TOOL_POSE", "CollisionCheck", "LynxArmEnv", "check_control_dt"]
+
+FloatArray = npt.NDArray[np.float64]
+Obs = dict[str, FloatArray]
+
+READY_TOOL_POSE = (0.18, 0.0, 0.08, TOP_DOWN_PITCH_RAD)
+"""Tool point (x, y, z) [m] and pitch [rad] of the arm at reset: 18 cm in front of
+the base, 8 cm above the base plane, gripper pointing down."""
+
+_TARGET_BOX_LOWER = (-0.30, -0.45, -0.004)
+"""Lower corner of the tool-target box [m]; z keeps the fingertips (8 mm past the
+tool point) above the table top (z = -12.5 mm) when the gripper points down."""
+_TARGET_BOX_UPPER = (0.45, 0.45, 0.50)
+_MAX_JOINT_JUMP_RAD = 0.5
+_GOAL_MARK_SITE = "place_target"
+"""The scene's green disc on the table; it is moved below the goal (visual only)."""
+_DRAW_BATCH = 16
+_MAX_DRAWS = 100
+
+
+class CollisionCheck(enum.Enum):
+    """When the arm–obstacle contact test runs.
+
+    CONTROL_STEP: on the contacts of the last physics step of each control period
+        (one test per env step; the default, cheap).
+    PHYSICS_STEP: after every physics step (exact: a graze shorter than the
+        control period is caught; costs a Python loop over the physics steps).
+    """
+
+    CONTROL_STEP = "control_step"
+    PHYSICS_STEP = "physics_step"
+
+
+def check_control_dt(control_dt: float, timestep: float) -> int:
+    """Frame skip for a control period, which must be a whole number of physics steps.
+
+    Args:
+        control_dt: Control period [s].
+        timestep: Physics step [s].
+
+    Returns:
+        Physics steps per control step, >= 1.
+
+    Raises:
+        InvalidInputError: If the period is not positive or not a multiple of the step.
+    """
+    if not (math.isfinite(control_dt) and control_dt > 0.0):
+        raise InvalidInputError(
+            f"control_dt must be a positive number of seconds, got {control_dt}"
+        )
+    ratio = control_dt / timestep
+    n = round(ratio)
+    if n < 1 or abs(ratio - n) > 1e-6:
+        raise InvalidInputError(
+            f"control_dt = {control_dt} s is not a whole multiple of the physics timestep "
+            f"{timestep} s (ratio {ratio:.6g}); use e.g. {max(n, 1) * timestep:g} s"
+        )
+    return n
+
+
+def _enum(kind: type[enum.Enum], value: object, name: str) -> Any:
+    try:
+        return kind(value.value if isinstance(value, kind) else value)
+    except ValueError:
+        choices = ", ".join(repr(m.value) for m in kind)
+        raise InvalidInputError(f"{name} must be one of {choices}, got {value!r}") from None
+
+
+class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
+    """Base of the arm envs (see :class:`~lynxsim.envs.PickAndPlaceEnv` for the manual).
+
+    Args:
+        render_mode: None, ``"rgb_array"`` (off-screen) or ``"human"`` (a passive
+            :mod:`mujoco.viewer` window; needs a display).
+        control: ``"tool"`` (tool-space deltas through the IK) or ``"joint"``.
+        reward_type: ``"sparse"`` or ``"dense"``.
+        distance_threshold: Success radius around the goal [m].
+        obstacle: The cylinder obstacle (default: the report's), or None.
+        collision_penalty: Subtracted from the reward on a step with arm–obstacle
+            contact, >= 0.
+        terminate_on_collision: End the episode on arm–obstacle contact.
+        collision_check: ``"control_step"`` or ``"physics_step"`` (see :class:`CollisionCheck`).
+        control_dt: Control period [s], a whole multiple of the 2 ms physics step.
+        position_step: Tool-point move for a tool action of 1 [m].
+        pitch_step: Pitch change for a tool action of 1 [rad].
+        joint_step: Joint change for a joint action of 1 [rad].
+        width: Frame width [px].
+        height: Frame height [px].
+        camera: Camera of the scene (``"front"`` or ``"top"``).
+        render_quality: ``"fast"`` (no shadows) or ``"default"``.
+
+    Raises:
+        InvalidInputError: A bad argument (the message names it and the valid choices).
+    """
+
+    metadata: dict[str, Any] = {  # noqa: RUF012  (Gymnasium's convention; copied per instance)
+        "render_modes": list(RENDER_MODES),
+        "render_fps": 25,
+    }
+
+    _HAS_CUBE: ClassVar[bool] = False
+    _GRIPPER_ACTION: ClassVar[bool] = False
+    _OBS_SIZE: ClassVar[int] = 0
+
+    def __init__(
+        self,
+        *,
+        render_mode: str | None = None,
+        control: Literal["tool", "joint"] | ControlMode = "tool",
+        reward_type: Literal["sparse", "dense"] | RewardType = "sparse",
+        distance_threshold: float = 0.025,
+        obstacle: ObstacleSpec | None = REPORT_OBSTACLE,
+        collision_penalty: float = 0.0,
+        terminate_on_collision: bool = False,
+        collision_check: Literal["control_step", "physics_step"] | CollisionCheck = "control_step",
+        control_dt: float = 0.04,
+        position_step: float = 0.015,
+        pitch_step: float = 0.1,
+        joint_step: float = 0.05,
+        width: int = 640,
+        height: int = 480,
+        camera: str = "front",
+        render_quality: Literal["fast", "default"] = "fast",
+    ) -> None:
+        settings = RenderSettings(
+            width=width,
+            height=height,
+            camera=camera,
+            quality=_enum(Quality, render_quality, "render_quality"),
+        )
+        self.control = _enum(ControlMode, control, "control")
+        self.reward_type = _enum(RewardType, reward_type, "reward_type")
+        self._sparse = self.reward_type is RewardType.SPARSE
+        self.collision_check = _enum(CollisionCheck, collision_check, "collision_check")
+        if not (math.isfinite(distance_threshold) and distance_threshold > 0.0):
+            raise InvalidInputError(f"distance_threshold must be > 0 m, got {distance_threshold}")
+        if not (math.isfinite(collision_penalty) and collision_penalty >= 0.0):
+            raise InvalidInputError(f"collision_penalty must be >= 0, got {collision_penalty}")
+        if obstacle is not None and not isinstance(obstacle, ObstacleSpec):
+            raise InvalidInputError(f"obstacle must be an ObstacleSpec or None, got {obstacle!r}")
+        self.render_mode = render_mode
+        self.distance_threshold = float(distance_threshold)
+        self.collision_penalty = float(collision_penalty)
+        self.terminate_on_collision = bool(terminate_on_collision)
+        self.obstacle = obstacle
+
+        spec = load_arm_spec(obstacle, cube=self._HAS_CUBE)
+        self.table_top_z = table_top_z(spec)
+        self.model = spec.compile()
+        self.data = mujoco.MjData(self.model)
+        self.frame_skip = check_control_dt(control_dt, float(self.model.opt.timestep))
+        fps = self._control_rate = 1.0 / self.dt
+        self.metadata = {
+            **self.metadata,
+            "render_fps": round(fps) if abs(fps - round(fps)) < 1e-9 else fps,
+        }
+        self._renderer = EnvRenderer(self.model, render_mode, settings)
+        self._resolve_ids()
+
+        if self.control is ControlMode.TOOL:
+            self._controller: ToolSpaceController | JointSpaceController = ToolSpaceController(
+                position_step,
+                pitch_step,
+                GRIP_ROLL_RAD,
+                _TARGET_BOX_LOWER,
+                _TARGET_BOX_UPPER,
+                max_joint_jump=_MAX_JOINT_JUMP_RAD,
+            )
+            n_arm = 4
+        else:
+            self._controller = JointSpaceController(joint_step)
+            n_arm = 5
+        n_act = n_arm + int(self._GRIPPER_ACTION)
+        self._n_act = n_act
+        self.action_space = gym.spaces.Box(-1.0, 1.0, shape=(n_act,), dtype=np.float32)
+        box = gym.spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float64)
+        self.observation_space = gym.spaces.Dict(  # type: ignore[assignment]
+            {
+                "observation": gym.spaces.Box(
+                    -np.inf, np.inf, shape=(self._OBS_SIZE,), dtype=np.float64
+                ),
+                "achieved_goal": box,
+                "desired_goal": box,
+            }
+        )
+        status, q_ready = ik_nearest(*READY_TOOL_POSE, GRIP_ROLL_RAD, LYNX_ARM.q_min)
+        if q_ready is None:  # pragma: no cover - a property of the arm, tested at reset
+            raise LynxsimError(f"the ready pose is unreachable ({status.name})")
+        self._q_ready = q_ready
+        self._set_goal(np.zeros(3))
+        self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    # ----------------------------------------------------------------- setup
+
+    def _resolve_ids(self) -> None:
+        m = self.model
+        ids = SceneIds.from_model(m)
+        self.ids = ids
+        self._arm_qpos = list(ids.arm_qpos)
+        self._arm_dof = list(ids.arm_dofs)
+        self._arm_act = _as_index(ids.arm_actuators)
+        self._grip_act = ids.gripper_actuator
+        self._finger_qpos = [int(m.jnt_qposadr[j]) for j in ids.finger_joints]
+        self._finger_dof = [int(m.jnt_dofadr[j]) for j in ids.finger_joints]
+        binding = arm_binding(m)
+        robot = np.flatnonzero(binding.robot_geoms).tolist()
+        obstacle = np.flatnonzero(binding.obstacle_geoms).tolist()
+        self._arm_obstacle_pairs = frozenset(
+            pair for r in robot for o in obstacle for pair in ((r, o), (o, r))
+        )
+        self._has_obstacle = bool(obstacle)
+        self._goal_mark = m.site(_GOAL_MARK_SITE).id
+
+    @property
+    def controller(self) -> ToolSpaceController | JointSpaceController:
+        """What turns actions into servo targets (its ``q_cmd`` and ``target``: the command)."""
+        return self._controller
+
+    # -------------------------------------------------------------- timing
+
+    @property
+    def dt(self) -> float:
+        """Control period [s]: ``frame_skip`` physics steps."""
+        return float(self.model.opt.timestep) * self.frame_skip
+
+    # ------------------------------------------------------------- reward
+
+    def compute_reward(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> FloatArray:
+        """Reward of goals, vectorised over leading axes (for hindsight relabelling).
+
+        Equals the reward :meth:`step` returned for the same goals and info, bit for bit.
+
+        Args:
+            achieved_goal: Achieved goals, shape (..., 3) [m].
+            desired_goal: Desired goals, shape (..., 3) [m].
+            info: The step's info dict, a sequence (or object array) of such dicts,
+                or a dict of arrays (a vector env's infos). Read only when
+                ``collision_penalty > 0`` (its ``"collision"`` entries).
+
+        Returns:
+            Rewards, shape (...).
+        """
+        d = goal_distance(achieved_goal, desired_goal)
+        reward = goal_reward(d, self.distance_threshold, self.reward_type)
+        if self.collision_penalty == 0.0:
+            return reward + 0.0
+        flags = collision_flags(info, d.shape)
+        total: FloatArray = reward + np.where(flags, -self.collision_penalty, 0.0)
+        return total
+
+    def compute_terminated(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> npt.NDArray[np.bool_]:
+        """Termination of goals and infos (vectorised like :meth:`compute_reward`).
+
+        True only on arm–obstacle contact with ``terminate_on_collision``;
+        reaching the goal does not end an episode.
+        """
+        shape = np.shape(np.asarray(achieved_goal))[:-1]
+        if not self.terminate_on_collision:
+            return np.zeros(shape, dtype=bool)
+        return np.asarray(collision_flags(info, shape), dtype=bool)
+
+    def compute_truncated(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> npt.NDArray[np.bool_]:
+        """Always False: the time limit is ``max_episode_steps`` (a wrapper)."""
+        return np.zeros(np.shape(np.asarray(achieved_goal))[:-1], dtype=bool)
+
+    # -------------------------------------------------------------- reset
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[Obs, dict[str, Any]]:
+        """Start an episode: the whole simulation state is set, nothing carries over.
+
+        Args:
+            seed: Seeds ``np_random`` (None continues its stream).
+            options: Unused.
+
+        Returns:
+            The observation and an info dict with the keys of :meth:`step`'s
+            (``is_success`` False, no collision, target ACCEPTED).
+        """
+        super().reset(seed=seed)
+        m, d = self.model, self.data
+        mujoco.mj_resetData(m, d)  # qvel, act, warm start, time, contacts, warnings
+        q = self._q_ready
+        for adr, v in zip(self._arm_qpos, q):
+            d.qpos[adr] = v
+        half = 0.5 * GRIPPER_OPEN_M
+        for adr in self._finger_qpos:
+            d.qpos[adr] = half
+        self._controller.reset(q)
+        d.ctrl[self._arm_act] = q
+        d.ctrl[self._grip_act] = GRIPPER_OPEN_M
+        self._sample_task()
+        mujoco.mj_forward(m, d)
+        x, y, z, _ = tool_pose_of(q)
+        self._tool_now = (x, y, z)
+        obs = self._observation()
+        if self.render_mode == "human":
+            self.render()
+        return obs, self._info(obs, False, TargetStatus.ACCEPTED)
+
+    def _sample_task(self) -> None:
+        """Place the cube (in ``data.qpos``) and set the goal, drawing from ``np_random``."""
+        raise NotImplementedError
+
+    def _draw_point(
+        self, region: PolarRegion, away_from: npt.ArrayLike | None = None
+    ) -> FloatArray:
+        """A point of ``region`` reachable top-down and clear of the obstacle.
+
+        Args:
+            region: Where to draw.
+            away_from: A point, shape (3,) [m], that the drawn one must be more
+                than ``distance_threshold`` away from.
+
+        Returns:
+            The point, shape (3,) [m].
+
+        Raises:
+            InvalidInputError: No such point after many draws (the obstacle blocks the region).
+        """
+        rng = self.np_random
+        for _ in range(_MAX_DRAWS):
+            p = sample_points(rng, region, _DRAW_BATCH)
+            ok = top_down_reachable(p)
+            if self.obstacle is not None:
+                ok &= clear_of_obstacle(p, self.obstacle.center, self.obstacle.radius)
+            if away_from is not None:
+                gap = p - np.asarray(away_from, dtype=float)
+                ok &= np.sqrt(np.sum(gap * gap, axis=1)) > self.distance_threshold
+            hits = np.flatnonzero(ok)
+            if hits.size:
+                point: FloatArray = p[hits[0]]
+                return point
+        raise InvalidInputError(
+            f"found no point of {region} that the arm reaches top-down clear of {self.obstacle}"
+        )
+
+    # --------------------------------------------------------------- step
+
+    def step(self, action: npt.ArrayLike) -> tuple[Obs, float, bool, bool, dict[str, Any]]:
+        """Advance one control period.
+
+        Args:
+            action: Shape ``action_space.shape``, values clipped to [-1, 1].
+
+        Returns:
+            ``(observation, reward, terminated, truncated, info)``; ``truncated`` is
+            always False here (the time limit is a wrapper). ``info`` holds
+            ``is_success``, ``collision``, ``distance`` [m], ``reward_goal``,
+            ``reward_collision``, ``target_status`` (a :class:`TargetStatus` value)
+            and ``target_held``.
+
+        Raises:
+            InvalidInputError: Wrong action shape. NonFiniteInputError: NaN or infinity.
+        """
+        a = np.asarray(action, dtype=np.float64)
+        if a.shape != (self._n_act,):
+            raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
+        values = a.tolist()
+        if not math.isfinite(sum(values)):
+            raise NonFiniteInputError(f"action must be finite, got {values}")
+        values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+        ctrl = self.data.ctrl
+        status = self._controller.apply(values)
+        ctrl[self._arm_act] = self._controller.q_cmd
+        if self._GRIPPER_ACTION:
+            ctrl[self._grip_act] = (values[-1] + 1.0) * (0.5 * GRIPPER_OPEN_M)
+        collision = self._simulate()
+
+        obs = self._observation()
+        info = self._info(obs, collision, status)
+        terminated = collision and self.terminate_on_collision
+        if self.render_mode == "human":
+            self.render()
+        return obs, info["reward_goal"] + info["reward_collision"], terminated, False, info
+
+    def _info(self, obs: Obs, collision: bool, status: TargetStatus) -> dict[str, Any]:
+        """The info dict of a step (and, with no collision and status ACCEPTED, of a reset)."""
+        ag = obs["achieved_goal"].tolist()
+        g = self._goal_list
+        dx, dy, dz = ag[0] - g[0], ag[1] - g[1], ag[2] - g[2]
+        distance = math.sqrt(dx * dx + dy * dy + dz * dz)
+        if self._sparse:
+            reward_goal = -1.0 if distance > self.distance_threshold else 0.0
+        else:
+            reward_goal = -distance
+        return {
+            "is_success": distance <= self.distance_threshold,
+            "collision": collision,
+            "distance": distance,
+            "reward_goal": reward_goal,
+            "reward_collision": -self.collision_penalty if collision else 0.0,
+            "target_status": int(status),
+            "target_held": status is not TargetStatus.ACCEPTED,
+        }
+
+    def _simulate(self) -> bool:
+        """Run the control period's physics steps; True on arm–obstacle contact."""
+        m, d = self.model, self.data
+        if self.collision_check is CollisionCheck.CONTROL_STEP:
+            mujoco.mj_step(m, d, nstep=self.frame_skip)
+            return self._touching_obstacle()
+        hit = False
+        for _ in range(self.frame_skip):
+            mujoco.mj_step(m, d)
+            hit = self._touching_obstacle() or hit
+        return hit
+
+    def _touching_obstacle(self) -> bool:
+        """Whether an arm collision geom touches the obstacle in the current contacts."""
+        if not self._has_obstacle or self.data.ncon == 0:
+            return False
+        contact = self.data.contact
+        pairs = self._arm_obstacle_pairs
+        for k, (g1, g2) in enumerate(contact.geom.tolist()):
+            if (g1, g2) in pairs and contact.dist[k] <= 0.0:
+                return True
+        return False
+
+    # -------------------------------------------------------- observation
+
+    def _observation(self) -> Obs:
+        """The observation dict; every array is new (never a view of the simulation)."""
+        raise NotImplementedError
+
+    def _tool_state(self, q: list[float]) -> tuple[float, float, float, float, float, float, float]:
+        """Tool point, pitch and tool-point velocity from the measured joints.
+
+        The velocity is the change of the tool point over the last control period
+        divided by it (zero right after reset) [m/s].
+        """
+        x, y, z, pitch = tool_pose_of(q)
+        px, py, pz = self._tool_now
+        rate = self._control_rate
+        self._tool_now = (x, y, z)
+        return x, y, z, pitch, (x - px) * rate, (y - py) * rate, (z - pz) * rate
+
+    @property
+    def _goal_list(self) -> list[float]:
+        return self._goal_floats
+
+    def _set_goal(self, goal: npt.ArrayLike) -> None:
+        """Set the episode's goal, shape (3,) [m], and move the table mark below it."""
+        self._goal = np.array(goal, dtype=np.float64).reshape(3)
+        self._goal_floats: list[float] = self._goal.tolist()
+        mark = self.model.site_pos[self._goal_mark]
+        mark[0], mark[1] = self._goal_floats[0], self._goal_floats[1]
+
+    @property
+    def goal(self) -> FloatArray:
+        """The desired goal of the episode, shape (3,) [m] (a copy)."""
+        return self._goal.copy()
+
+    # ---------------------------------------------------------- rendering
+
+    def render(self) -> npt.NDArray[np.uint8] | None:
+        """An RGB frame (``rgb_array``: shape (height, width, 3), uint8), or None.
+
+        The goal is marked by an orange sphere. The renderer (and its GL context)
+        is created on the first call, in the process that calls it.
+        """
+        frame: npt.NDArray[np.uint8] | None = self._renderer.render(self.data, self._goal)
+        return frame
+
+    def close(self) -> None:
+        """Free the renderer and close the viewer window, if any."""
+        self._renderer.close()
+
+
+def _as_index(ids: tuple[int, ...]) -> slice | list[int]:
+    """A slice when the ids are consecutive (faster to index with), else the list."""
+    if list(ids) == list(range(ids[0], ids[0] + len(ids))):
+        return slice(ids[0], ids[0] + len(ids))
+    return list(ids)

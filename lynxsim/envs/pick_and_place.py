@@ -1,0 +1,239 @@
+"""``LynxPickAndPlace-v0``: pick the cube up and put it at a goal, around the obstacle."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import numpy as np
+
+from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs
+from lynxsim.envs.workspace import PolarRegion
+from lynxsim.errors import InvalidInputError
+from lynxsim.sim import CUBE_BODY
+
+__all__ = ["CUBE_HALF_SIZE_M", "PickAndPlaceEnv"]
+
+CUBE_HALF_SIZE_M = 0.0125
+"""Half the cube's edge [m] (the scene's 25 mm cube)."""
+
+
+def _fields(*sizes: tuple[str, int]) -> dict[str, slice]:
+    out, start = {}, 0
+    for name, size in sizes:
+        out[name] = slice(start, start + size)
+        start += size
+    return out
+
+
+class PickAndPlaceEnv(LynxArmEnv):
+    """Pick-and-place with the report's 5-DOF Lynxmotion arm, around its cylinder obstacle.
+
+    A 25 mm cube rests on the table; the arm must grip it between its two fingers
+    (friction only: no weld, no attachment), carry it and bring it to a goal
+    point on the table or, like Fetch's pick-and-place, in the air above it. The
+    report's obstacle (a cylinder of radius 40 mm at (150, 150) mm, 400 mm tall)
+    stands on the table unless ``obstacle`` removes or moves it. Units are SI;
+    the frame is the arm's base frame (z up, table top at z = -12.5 mm).
+
+    **Action space** ``Box(-1, 1, (5,), float32)`` with ``control="tool"`` (default):
+
+    ====  ==========================================  ====================================
+    idx   action                                      effect of +1
+    ====  ==========================================  ====================================
+    0-2   move the commanded tool point x, y, z       + ``position_step`` [m] (0.015)
+    3     change the commanded tool pitch             + ``pitch_step`` [rad] (0.1)
+    4     gripper opening (absolute)                  -1 closed (0 m) .. +1 open (0.03 m)
+    ====  ==========================================  ====================================
+
+    The commanded tool target moves by the action, is clipped to a box
+    (x in [-0.30, 0.45], y in [-0.45, 0.45], z in [-0.004, 0.50] m) and a pitch in
+    [-pi/2, pi/2], and the analytic IK (the solution nearest the current command,
+    wrist roll held at pi) turns it into the five servo targets. A target out of
+    reach, outside the joint ranges, or whose solution would move a joint by more
+    than 0.5 rad in one step (a configuration flip) is refused: the last feasible
+    target is held and ``info["target_status"]`` says why; no exception is raised.
+    With ``control="joint"`` the action is ``Box(-1, 1, (6,), float32)``: deltas of
+    q1..q5 (+1 = + ``joint_step`` [rad], 0.05; clipped to the joint ranges), then
+    the gripper as above.
+
+    **Observation** (a dict, every array float64 and freshly allocated):
+    ``achieved_goal`` is the cube's position, ``desired_goal`` the goal, both
+    shape (3,) [m]; ``observation`` has shape (45,):
+
+    =====  ====================================================  =======
+    idx    observation                                           unit
+    =====  ====================================================  =======
+    0-2    tool point x, y, z                                    m
+    3      tool pitch (q2 + q3 + q4)                             rad
+    4      gripper opening (distance between the finger pads)    m
+    5-7    cube position                                         m
+    8-10   cube position minus tool point                        m
+    11-14  cube orientation quaternion (w, x, y, z)              --
+    15-17  tool-point velocity (difference over one step)        m/s
+    18-20  cube linear velocity                                  m/s
+    21-23  cube angular velocity, cube frame                     rad/s
+    24-28  joint angles q1..q5                                   rad
+    29-33  joint velocities                                      rad/s
+    34     gripper opening rate                                  m/s
+    35-39  commanded joint angles (servo targets)                rad
+    40     commanded gripper opening                             m
+    41-43  commanded tool point                                  m
+    44     commanded tool pitch                                  rad
+    =====  ====================================================  =======
+
+    Positions come from the joint and free-joint coordinates after the step (the
+    tool point through the analytic FK, which equals MuJoCo's ``tool`` site).
+    :attr:`OBS_INDEX` names these slices.
+
+    **Rewards** (``compute_reward(achieved_goal, desired_goal, info)`` gives the
+    same numbers, vectorised, for hindsight relabelling), with ``d`` the distance
+    from the cube to the goal [m]:
+
+    - ``reward_goal``: sparse (default) -1 if ``d > distance_threshold`` (0.025 m)
+      else 0; dense ``-d``.
+    - ``reward_collision``: ``-collision_penalty`` (default 0) on a step with
+      arm–obstacle contact, else 0.
+
+    The reward is their sum; both terms are in ``info``.
+
+    **Starting state** (after ``reset``): joints at the ready pose (tool point at
+    (0.18, 0, 0.08) m, pointing down, wrist roll pi), gripper open (0.03 m), all
+    velocities zero, servo targets equal to the joints. The cube rests on the table
+    (centre at z = 0), its faces turned towards the base axis, at a point drawn
+    uniformly from 0.13..0.25 m from the base axis and azimuth -80..80 deg. The goal
+    is drawn from the same ring, on the table (cube centre height) or, with
+    probability ``goal_in_air_prob`` (0.5), 0.03 to 0.09 m above it. The gripper,
+    pointing down, reaches both points and the carry height 7 cm above the table
+    over them; the arm turned towards either keeps 2 cm from the obstacle; the goal is
+    farther than ``distance_threshold`` from the cube. Everything is drawn with
+    ``np_random``; ``reset`` sets the whole simulation state (``mj_resetData``:
+    velocities, warm starts and time included).
+
+    **Episode end**: no termination on success (``info["is_success"]`` reports it
+    every step); with ``terminate_on_collision`` an arm–obstacle contact terminates.
+    Truncation at ``max_episode_steps`` (200 steps = 8 s as registered).
+
+    **Info** of ``step``: ``is_success`` (``d <= distance_threshold``), ``collision``
+    (an arm collision geom touches the obstacle; checked on the contacts of the last
+    physics step, or of every physics step with ``collision_check="physics_step"``),
+    ``distance`` [m], ``reward_goal``, ``reward_collision``, ``target_status`` (a
+    :class:`~lynxsim.envs.control.TargetStatus`) and ``target_held``.
+
+    **Arguments** (all keyword): ``goal_in_air_prob`` (0.5) and those of
+    :class:`~lynxsim.envs.base.LynxArmEnv`: ``render_mode`` (None, ``"rgb_array"``,
+    ``"human"``), ``control`` (``"tool"``, ``"joint"``), ``reward_type``
+    (``"sparse"``, ``"dense"``), ``distance_threshold`` [m], ``obstacle`` (an
+    :class:`~lynxsim.sim.ObstacleSpec`, or None), ``collision_penalty``,
+    ``terminate_on_collision``, ``collision_check``, ``control_dt`` [s] (0.04: 25 Hz
+    over the 2 ms physics step; a non-multiple raises), ``position_step`` [m],
+    ``pitch_step`` [rad], ``joint_step`` [rad], ``width``, ``height`` [px],
+    ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"fast"``, ``"default"``).
+
+    **Rendering**: ``render_mode="rgb_array"`` returns (height, width, 3) uint8 frames
+    (MuJoCo's EGL off-screen context on a headless machine: import ``lynxsim`` or
+    ``lynxsim.sim`` before ``mujoco`` so that ``MUJOCO_GL`` defaults to ``egl``); the
+    goal is marked by an orange sphere and a green disc on the table below it.
+    ``"human"`` opens a passive :mod:`mujoco.viewer` window (needs a display). Nothing
+    is rendered inside ``step`` unless ``render_mode="human"``. The renderer is made at
+    the first ``render()``, in the process that calls it, so ``gym.make_vec(...,
+    vectorization_mode="async")`` renders in its workers; a process forked after its
+    parent made a GL context cannot render (EGL deadlocks there, so it raises): then
+    pass ``vector_kwargs={"context": "forkserver"}``.
+
+    **Version history**: v0: first release.
+    """
+
+    _HAS_CUBE: ClassVar[bool] = True
+    _GRIPPER_ACTION: ClassVar[bool] = True
+    OBS_INDEX: ClassVar[dict[str, slice]] = _fields(
+        ("tool_position", 3),
+        ("tool_pitch", 1),
+        ("gripper_opening", 1),
+        ("cube_position", 3),
+        ("cube_relative_position", 3),
+        ("cube_quaternion", 4),
+        ("tool_velocity", 3),
+        ("cube_velocity", 3),
+        ("cube_angular_velocity", 3),
+        ("joint_angles", 5),
+        ("joint_velocities", 5),
+        ("gripper_rate", 1),
+        ("commanded_joint_angles", 5),
+        ("commanded_gripper_opening", 1),
+        ("commanded_tool_position", 3),
+        ("commanded_tool_pitch", 1),
+    )
+    """Slices of ``observation`` by name."""
+    _OBS_SIZE: ClassVar[int] = 45
+
+    CUBE_REGION = PolarRegion(
+        radius=(0.13, 0.25), azimuth=(-math.radians(80), math.radians(80)), height=(0.0, 0.0)
+    )
+    """Where cubes start (centre z = 0: resting on the table)."""
+    AIR_HEIGHT_M = (0.03, 0.09)
+    """Range of goal heights above the resting height when in the air [m]."""
+
+    def __init__(self, *, goal_in_air_prob: float = 0.5, **kwargs: Any) -> None:
+        if not 0.0 <= goal_in_air_prob <= 1.0:
+            raise InvalidInputError(f"goal_in_air_prob must be in [0, 1], got {goal_in_air_prob}")
+        self.goal_in_air_prob = float(goal_in_air_prob)
+        super().__init__(**kwargs)
+        m = self.model
+        body = m.body(CUBE_BODY)
+        joint = int(body.jntadr[0])
+        self._cube_qpos = int(m.jnt_qposadr[joint])
+        self._cube_dof = int(m.jnt_dofadr[joint])
+        self._rest_z = self.table_top_z + CUBE_HALF_SIZE_M
+        r, a, _ = self.CUBE_REGION.radius, self.CUBE_REGION.azimuth, None
+        self._table_region = PolarRegion(r, a, (self._rest_z, self._rest_z))
+        lo, hi = self.AIR_HEIGHT_M
+        self._air_region = PolarRegion(r, a, (self._rest_z + lo, self._rest_z + hi))
+
+    def _sample_task(self) -> None:
+        cube = self._draw_point(self._table_region)
+        in_air = self.np_random.uniform() < self.goal_in_air_prob
+        goal = self._draw_point(self._air_region if in_air else self._table_region, cube)
+        yaw = math.atan2(cube[1], cube[0])
+        a = self._cube_qpos
+        qpos = self.data.qpos
+        qpos[a : a + 3] = cube
+        qpos[a + 3 : a + 7] = (math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
+        self._set_goal(goal)
+
+    def _observation(self) -> Obs:
+        d = self.data
+        qp = d.qpos.tolist()
+        qv = d.qvel.tolist()
+        q = [qp[i] for i in self._arm_qpos]
+        x, y, z, pitch, vx, vy, vz = self._tool_state(q)
+        f0, f1 = self._finger_qpos
+        g0, g1 = self._finger_dof
+        a, v = self._cube_qpos, self._cube_dof
+        cx, cy, cz = qp[a : a + 3]
+        cmd = self._controller
+        o = [
+            x, y, z, pitch, qp[f0] + qp[f1],
+            cx, cy, cz, cx - x, cy - y, cz - z,
+            *qp[a + 3 : a + 7],
+            vx, vy, vz,
+            *qv[v : v + 6],
+            *q,
+            *(qv[i] for i in self._arm_dof),
+            qv[g0] + qv[g1],
+            *cmd.q_cmd,
+            float(d.ctrl[self._grip_act]),
+            *cmd.target,
+        ]  # fmt: skip
+        return {
+            "observation": np.array(o),
+            "achieved_goal": np.array((cx, cy, cz)),
+            "desired_goal": self._goal.copy(),
+        }
+
+    @property
+    def cube_position(self) -> FloatArray:
+        """The cube's centre now, shape (3,) [m] (a copy)."""
+        a = self._cube_qpos
+        position: FloatArray = self.data.qpos[a : a + 3].copy()
+        return position

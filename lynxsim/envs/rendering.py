@@ -1,0 +1,103 @@
+"""Frames and windows for the envs, made lazily in the process that asks for them.
+
+``rgb_array`` frames come from a :class:`~lynxsim.sim.render.SceneRenderer`
+(EGL off-screen on a headless machine), ``human`` from a passive
+:mod:`mujoco.viewer` window. Nothing is made before the first frame, so vector
+envs render in their workers. A process forked after an env of this module made a
+GL context refuses to make one (Mesa's EGL deadlocks there) and says what to do.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import mujoco  # type: ignore[import-untyped]
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.errors import InvalidInputError, LynxsimError
+from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
+
+__all__ = ["RENDER_MODES", "EnvRenderer", "has_display"]
+
+RENDER_MODES = ("human", "rgb_array")
+
+_gl_pid: int | None = None
+"""Process in which a renderer of this module made a GL context (a fork inherits it)."""
+
+
+def has_display() -> bool:
+    """Whether a display server is named in the environment (X11 or Wayland)."""
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+class EnvRenderer:
+    """The rendering of one env.
+
+    Args:
+        model: The env's model.
+        render_mode: None, ``"rgb_array"`` or ``"human"``.
+        settings: Frame size, camera and quality of ``rgb_array`` frames.
+
+    Raises:
+        InvalidInputError: An unknown mode, or ``"human"`` without a display.
+    """
+
+    def __init__(
+        self, model: mujoco.MjModel, render_mode: str | None, settings: RenderSettings
+    ) -> None:
+        if render_mode is not None and render_mode not in RENDER_MODES:
+            raise InvalidInputError(
+                f"render_mode must be None or one of {list(RENDER_MODES)}, got {render_mode!r}"
+            )
+        if render_mode == "human" and not has_display():
+            raise InvalidInputError(
+                "render_mode='human' needs a display (DISPLAY or WAYLAND_DISPLAY); "
+                "use render_mode='rgb_array' off-screen"
+            )
+        self._model = model
+        self.mode = render_mode
+        self.settings = settings
+        self._scene: SceneRenderer | None = None
+        self._viewer: Any = None
+
+    @property
+    def started(self) -> bool:
+        """Whether a GL context or window exists."""
+        return self._scene is not None or self._viewer is not None
+
+    def render(self, data: mujoco.MjData, goal: npt.NDArray[np.float64]) -> Any:
+        """A frame (``rgb_array``: (height, width, 3) uint8, goal marked), or None."""
+        if self.mode == "rgb_array":
+            if self._scene is None:
+                self._scene = self._make_scene_renderer()
+            return self._scene.render(data, Overlay(targets=goal.reshape(1, 3)))
+        if self.mode == "human":
+            if self._viewer is None:
+                import mujoco.viewer  # type: ignore[import-untyped]
+
+                self._viewer = mujoco.viewer.launch_passive(self._model, data)
+            self._viewer.sync()
+        return None
+
+    def _make_scene_renderer(self) -> SceneRenderer:
+        global _gl_pid
+        if _gl_pid is not None and _gl_pid != os.getpid():
+            raise LynxsimError(
+                "cannot render in a process forked after its parent created a GL context; "
+                "make async vector envs with vector_kwargs={'context': 'forkserver'} (or "
+                "'spawn'), or render in the parent only after forking"
+            )
+        scene = SceneRenderer(self._model, self.settings)
+        _gl_pid = os.getpid()
+        return scene
+
+    def close(self) -> None:
+        """Free the GL context and close the window, if any (idempotent)."""
+        if self._scene is not None:
+            self._scene.close()
+            self._scene = None
+        if self._viewer is not None:
+            self._viewer.close()
+            self._viewer = None

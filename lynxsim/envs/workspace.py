@@ -1,0 +1,158 @@
+"""Where the envs put cubes and goals: reachable top-down, clear of the obstacle.
+
+A point qualifies when the gripper can reach it pointing straight down (tool
+pitch -pi/2, the wrist roll of the envs), also at the carry height above it, and
+when the arm, turned towards it, keeps its links clear of the obstacle: seen from
+above, the links lie on a strip along the ray from the base through the point,
+and the obstacle's circle must stay outside that strip by a margin. Together
+these are what a top-down pick, a carry at a fixed height and a place need; the
+scripted expert (:mod:`lynxsim.envs.expert`) relies on them.
+
+Pure NumPy on top of :func:`lynxsim.arm.ik`; sampling takes a
+:class:`numpy.random.Generator` (the env's ``np_random``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.arm import ik
+from lynxsim.errors import InvalidInputError
+
+__all__ = [
+    "ARM_HALF_WIDTH_M",
+    "CARRY_HEIGHT_M",
+    "GRIP_ROLL_RAD",
+    "OBSTACLE_MARGIN_M",
+    "TOP_DOWN_PITCH_RAD",
+    "TUCK_RADIUS_M",
+    "PolarRegion",
+    "clear_of_obstacle",
+    "sample_points",
+    "top_down_reachable",
+]
+
+FloatArray = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+
+TOP_DOWN_PITCH_RAD = -math.pi / 2
+"""Tool pitch of a top-down grasp: the tool axis points straight down [rad]."""
+GRIP_ROLL_RAD = math.pi
+"""Wrist roll the envs hold [rad]: the fingers close along the arm's radial
+direction, and the roll servo sits mid-range (its range is 0..2 pi)."""
+CARRY_HEIGHT_M = 0.07
+"""Tool-point height at which the expert carries the cube [m] (cube 6 cm above the table)."""
+TUCK_RADIUS_M = 0.09
+"""Horizontal distance of the tool from the base axis while the expert turns the
+base [m]: the arm then stays within ~0.13 m of the axis, inside the report's
+obstacle (whose near face is 0.172 m from the axis)."""
+ARM_HALF_WIDTH_M = 0.025
+"""Half the width of the arm seen from above [m] (the wrist bracket is 22.9 mm)."""
+OBSTACLE_MARGIN_M = 0.02
+"""Clearance kept between the arm's strip and the obstacle [m]."""
+_BEHIND_M = 0.05
+"""How far the strip reaches behind the base axis [m] (elbow, base housing)."""
+_BEYOND_M = 0.035
+"""How far the gripper reaches past the tool point, radially, when open [m]."""
+
+
+@dataclass(frozen=True)
+class PolarRegion:
+    """A region in cylindrical coordinates about the base axis.
+
+    Points are drawn uniformly over the annular sector's area, and uniformly in
+    height.
+
+    Attributes:
+        radius: (min, max) horizontal distance from the base axis [m].
+        azimuth: (min, max) angle from the base x axis, counter-clockwise [rad].
+        height: (min, max) z of the point [m].
+    """
+
+    radius: tuple[float, float]
+    azimuth: tuple[float, float]
+    height: tuple[float, float]
+
+    def __post_init__(self) -> None:
+        for name in ("radius", "azimuth", "height"):
+            lo, hi = getattr(self, name)
+            if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
+                raise InvalidInputError(f"region {name} must be finite (min, max), got {(lo, hi)}")
+        if self.radius[0] < 0.0:
+            raise InvalidInputError(f"region radius must be >= 0, got {self.radius}")
+
+
+def top_down_reachable(points: npt.ArrayLike, carry_height: float = CARRY_HEIGHT_M) -> BoolArray:
+    """Whether a top-down gripper reaches each point and the carry height above it.
+
+    Args:
+        points: Tool points, shape (N, 3) [m].
+        carry_height: Carry height [m]; the point lifted to ``max(z, carry_height)``
+            must be reachable too.
+
+    Returns:
+        Mask, shape (N,).
+    """
+    p = np.asarray(points, dtype=float).reshape(-1, 3)
+    lifted = p.copy()
+    lifted[:, 2] = np.maximum(lifted[:, 2], carry_height)
+    ok: BoolArray = (
+        ik(p, TOP_DOWN_PITCH_RAD, GRIP_ROLL_RAD).ok
+        & ik(lifted, TOP_DOWN_PITCH_RAD, GRIP_ROLL_RAD).ok
+    )
+    return ok
+
+
+def clear_of_obstacle(
+    points: npt.ArrayLike,
+    center: tuple[float, float],
+    radius: float,
+    margin: float = OBSTACLE_MARGIN_M,
+) -> BoolArray:
+    """Whether the arm, turned towards each point, keeps clear of a vertical cylinder.
+
+    Seen from above the arm covers the strip of half-width :data:`ARM_HALF_WIDTH_M`
+    along the segment from ``_BEHIND_M`` behind the base axis to ``_BEYOND_M`` past
+    the point; the cylinder's circle must stay ``margin`` away from it.
+
+    Args:
+        points: Points, shape (N, 2) or (N, 3) [m] (z is ignored).
+        center: (x, y) of the cylinder's axis [m].
+        radius: Its radius [m].
+        margin: Clearance [m].
+
+    Returns:
+        Mask, shape (N,).
+    """
+    p = np.asarray(points, dtype=float)
+    xy = p.reshape(-1, p.shape[-1])[:, :2]
+    rho = np.hypot(xy[:, 0], xy[:, 1])
+    u = np.where(rho[:, None] > 0.0, xy / np.maximum(rho, 1e-12)[:, None], [1.0, 0.0])
+    c = np.asarray(center, dtype=float)
+    t = np.clip(u @ c, -_BEHIND_M, rho + _BEYOND_M)
+    nearest = u * t[:, None]
+    distance = np.hypot(c[0] - nearest[:, 0], c[1] - nearest[:, 1])
+    clear: BoolArray = distance >= radius + ARM_HALF_WIDTH_M + margin
+    return clear
+
+
+def sample_points(rng: np.random.Generator, region: PolarRegion, n: int) -> FloatArray:
+    """Draw points uniformly from a region.
+
+    Args:
+        rng: The generator (an env's ``np_random``).
+        region: Where.
+        n: How many.
+
+    Returns:
+        Points, shape (n, 3) [m].
+    """
+    r0, r1 = region.radius
+    radius = np.sqrt(rng.uniform(r0 * r0, r1 * r1, n))
+    azimuth = rng.uniform(*region.azimuth, n)
+    z = rng.uniform(*region.height, n)
+    return np.stack([radius * np.cos(azimuth), radius * np.sin(azimuth), z], axis=-1)

@@ -1,0 +1,334 @@
+"""The Gymnasium API of the arm envs: checker, seeding, reset state, copies, rewards, arguments."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import gymnasium as gym
+import mujoco
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+from lynxsim.arm import tool_pose
+from lynxsim.envs import PickAndPlaceEnv, ReachEnv
+from lynxsim.envs.base import READY_TOOL_POSE, check_control_dt
+from lynxsim.envs.control import TargetStatus
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.sim import ObstacleSpec
+from tests.envs.conftest import ENV_MODE_IDS, ENV_MODES
+from tests.helpers import assert_close
+
+POSE_M = 1e-12
+"""Agreement of a set pose with its definition [m] (and [rad])."""
+SITE_M = 1e-9
+"""Agreement of the analytic tool point with MuJoCo's tool site [m]."""
+ROLLOUT_STEPS = 40
+
+
+def _actions(env: gym.Env, n: int, seed: int = 0) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    return rng.uniform(-1.0, 1.0, (n, *env.action_space.shape)).astype(np.float32)
+
+
+def _rollout(env: gym.Env, seed: int | None, actions: np.ndarray) -> list:
+    out = [env.reset(seed=seed)]
+    out += [env.step(a) for a in actions]
+    return out
+
+
+def _assert_same(a: object, b: object) -> None:
+    if isinstance(a, dict):
+        assert a.keys() == b.keys()
+        for k in a:
+            _assert_same(a[k], b[k])
+    elif isinstance(a, tuple | list):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            _assert_same(x, y)
+    else:
+        np.testing.assert_array_equal(a, b)
+
+
+def _state(env: gym.Env) -> np.ndarray:
+    u = env.unwrapped
+    spec = int(mujoco.mjtState.mjSTATE_INTEGRATION)
+    state = np.empty(mujoco.mj_stateSize(u.model, spec))
+    mujoco.mj_getState(u.model, u.data, state, spec)
+    return state
+
+
+@pytest.mark.parametrize(("env_id", "control"), ENV_MODES, ids=ENV_MODE_IDS)
+def test_check_env_passes(env_id, control):
+    env = gym.make(env_id, control=control)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env.unwrapped, skip_render_check=True)
+    # Unbounded observation boxes are deliberate (Gymnasium's MuJoCo envs have them too).
+    assert [str(w.message) for w in caught if "infinity" not in str(w.message)] == []
+    env.close()
+
+
+@pytest.mark.parametrize(("env_id", "control"), ENV_MODES, ids=ENV_MODE_IDS)
+def test_two_envs_with_one_seed_roll_out_identically(env_id, control):
+    a, b = gym.make(env_id, control=control), gym.make(env_id, control=control)
+    actions = _actions(a, ROLLOUT_STEPS)
+    _assert_same(_rollout(a, 11, actions), _rollout(b, 11, actions))
+
+
+@pytest.mark.parametrize(("env_id", "control"), ENV_MODES, ids=ENV_MODE_IDS)
+def test_reset_with_a_seed_restores_the_whole_state(env_id, control):
+    env = gym.make(env_id, control=control)
+    actions = _actions(env, ROLLOUT_STEPS)
+    first = _rollout(env, 5, actions)
+    for a in _actions(env, 25, seed=1):  # disturb: velocities, warm start, contacts
+        env.step(a)
+    env.reset(seed=5)
+    after_reset = _state(env)
+    second = _rollout(env, 5, actions)
+    _assert_same(first, second)
+    fresh = gym.make(env_id, control=control)
+    fresh.reset(seed=5)
+    np.testing.assert_array_equal(after_reset, _state(fresh))
+
+
+def test_unseeded_resets_continue_the_seeded_stream():
+    a, b = gym.make("LynxPickAndPlace-v0"), gym.make("LynxPickAndPlace-v0")
+    goals_a = [a.reset(seed=3)[0]["desired_goal"]] + [
+        a.reset()[0]["desired_goal"] for _ in range(4)
+    ]
+    goals_b = [b.reset(seed=3)[0]["desired_goal"]] + [
+        b.reset()[0]["desired_goal"] for _ in range(4)
+    ]
+    np.testing.assert_array_equal(goals_a, goals_b)
+    assert len({tuple(g) for g in goals_a}) == len(goals_a)  # the stream moves on
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_pick_and_place_starts_as_the_manual_says(seed):
+    env = PickAndPlaceEnv()
+    obs, info = env.reset(seed=seed)
+    d, ix = env.data, env.OBS_INDEX
+    o = obs["observation"]
+    q = d.qpos[list(env.ids.arm_qpos)]
+    pose = tool_pose(q)
+    assert_close(pose.position, READY_TOOL_POSE[:3], atol=POSE_M)
+    assert pose.pitch == pytest.approx(READY_TOOL_POSE[3], abs=POSE_M)
+    assert q[4] == pytest.approx(math.pi, abs=POSE_M)  # wrist roll
+    assert_close(d.site_xpos[env.ids.tool_site], READY_TOOL_POSE[:3], atol=SITE_M)
+    assert_close(o[ix["tool_position"]], READY_TOOL_POSE[:3], atol=POSE_M)
+    assert o[ix["gripper_opening"]][0] == pytest.approx(0.03, abs=POSE_M)
+    assert not d.qvel.any()
+    assert not d.qacc_warmstart.any()
+    assert d.time == 0.0
+    assert_close(d.ctrl[list(env.ids.arm_actuators)], q, atol=0.0)
+    assert d.ctrl[env.ids.gripper_actuator] == 0.03
+    assert_close(o[ix["commanded_joint_angles"]], q, atol=0.0)
+    assert not o[ix["tool_velocity"]].any()
+    assert not o[ix["joint_velocities"]].any()
+
+    cube, goal = obs["achieved_goal"], obs["desired_goal"]
+    assert_close(cube, env.cube_position, atol=0.0)
+    assert cube[2] == pytest.approx(0.0, abs=POSE_M)  # resting on the table top z = -12.5 mm
+    for p in (cube, goal):
+        assert 0.13 <= math.hypot(p[0], p[1]) <= 0.25
+        assert abs(math.atan2(p[1], p[0])) <= math.radians(80)
+    assert goal[2] == pytest.approx(0.0, abs=POSE_M) or 0.03 <= goal[2] <= 0.09
+    yaw = 2 * math.atan2(d.qpos[env._cube_qpos + 6], d.qpos[env._cube_qpos + 3])
+    assert yaw == pytest.approx(math.atan2(cube[1], cube[0]), abs=1e-12)  # faces the base
+    assert info["distance"] > env.distance_threshold
+    assert np.linalg.norm(goal - cube) > env.distance_threshold
+    assert not env._touching_obstacle()
+
+
+def test_reach_starts_as_the_manual_says():
+    env = ReachEnv()
+    assert env.model.nbody == PickAndPlaceEnv().model.nbody - 1  # no cube
+    for seed in range(20):
+        obs, info = env.reset(seed=seed)
+        assert_close(obs["achieved_goal"], READY_TOOL_POSE[:3], atol=POSE_M)
+        goal = obs["desired_goal"]
+        assert 0.10 <= math.hypot(goal[0], goal[1]) <= 0.25
+        assert 0.0 <= goal[2] <= 0.10
+        assert info["distance"] > env.distance_threshold
+    assert env.action_space.shape == (4,)
+    assert ReachEnv(control="joint").action_space.shape == (5,)
+
+
+def test_observations_are_fresh_copies(pick_and_place):
+    env = pick_and_place
+    u = env.unwrapped
+    obs, _ = env.reset(seed=0)
+    twin = gym.make("LynxPickAndPlace-v0")
+    twin_obs, _ = twin.reset(seed=0)
+    sim_arrays = [u.data.qpos, u.data.qvel, u.data.ctrl, u.data.site_xpos, u._goal]
+    action = env.action_space.sample()
+    for _ in range(3):
+        arrays = list(obs.values())
+        for x in arrays:
+            assert x.flags.writeable
+            assert not any(np.shares_memory(x, s) for s in sim_arrays)
+            assert sum(np.shares_memory(x, y) for y in arrays) == 1
+            x[...] = np.nan  # scribbling on an observation changes nothing
+        obs, *_ = env.step(action)
+        twin_obs, *_ = twin.step(action)
+        _assert_same(obs, twin_obs)
+
+
+@pytest.mark.parametrize("reward_type", ["sparse", "dense"])
+@pytest.mark.parametrize("penalty", [0.0, 2.5], ids=["no-penalty", "penalty"])
+def test_compute_reward_reproduces_step_rewards(reward_type, penalty):
+    env = gym.make(
+        "LynxPickAndPlace-v0", reward_type=reward_type, collision_penalty=penalty, control="joint"
+    )
+    u = env.unwrapped
+    achieved, desired, infos, rewards = [], [], [], []
+    rng = np.random.default_rng(0)
+    for episode in range(3):
+        env.reset(seed=episode)
+        for k in range(60):
+            # Sweep the base into the obstacle now and then, so collisions occur.
+            a = rng.uniform(-1, 1, 6) if k % 20 < 12 else np.array([1, 0.3, 0, 0, 0, 0])
+            obs, reward, _, _, info = env.step(a)
+            achieved.append(obs["achieved_goal"])
+            desired.append(obs["desired_goal"])
+            infos.append(info)
+            rewards.append(reward)
+            assert reward == u.compute_reward(obs["achieved_goal"], obs["desired_goal"], info)
+            assert reward == info["reward_goal"] + info["reward_collision"]
+    achieved, desired, rewards = np.array(achieved), np.array(desired), np.array(rewards)
+    np.testing.assert_array_equal(u.compute_reward(achieved, desired, infos), rewards)
+    np.testing.assert_array_equal(u.compute_reward(achieved, desired, np.array(infos)), rewards)
+    as_dict = {"collision": np.array([i["collision"] for i in infos])}
+    np.testing.assert_array_equal(u.compute_reward(achieved, desired, as_dict), rewards)
+    batched = u.compute_reward(achieved.reshape(3, 60, 3), desired.reshape(3, 60, 3), infos)
+    np.testing.assert_array_equal(batched.ravel(), rewards)
+    if penalty:
+        assert any(i["collision"] for i in infos)
+    # Hindsight: relabelled goals give the reward of being there.
+    assert (u.compute_reward(achieved, achieved, infos) <= 0.0).all()
+
+
+def test_arm_obstacle_contact_is_reported_penalised_and_can_terminate():
+    env = gym.make(
+        "LynxPickAndPlace-v0",
+        control="joint",
+        collision_penalty=3.0,
+        terminate_on_collision=True,
+        collision_check="physics_step",
+    )
+    env.reset(seed=0)
+    turn = np.array([1.0, 0, 0, 0, 0, 1.0])  # base towards +y: through the obstacle at 45 deg
+    for _ in range(40):
+        obs, reward, terminated, truncated, info = env.step(turn)
+        if info["collision"]:
+            break
+    assert info["collision"]
+    assert terminated
+    assert not truncated
+    assert info["reward_collision"] == -3.0
+    assert reward == info["reward_goal"] - 3.0
+    u = env.unwrapped
+    assert u.compute_terminated(obs["achieved_goal"], obs["desired_goal"], info)
+    assert not u.compute_truncated(obs["achieved_goal"], obs["desired_goal"], info)
+    q1 = env.unwrapped.data.qpos[0]
+    assert math.radians(15) < q1 < math.radians(45)  # the arm met the cylinder on its way
+
+
+def test_no_obstacle_means_no_collisions_and_a_moved_one_is_avoided():
+    env = gym.make("LynxPickAndPlace-v0", control="joint", obstacle=None)
+    env.reset(seed=0)
+    assert env.unwrapped.ids.obstacle_geom is None
+    for _ in range(40):
+        *_, info = env.step(np.array([1.0, 0, 0, 0, 0, 1.0]))
+        assert not info["collision"]
+    moved = ObstacleSpec(center=(0.2, -0.1), radius=0.03, top_z=0.3)
+    env = PickAndPlaceEnv(obstacle=moved)
+    for seed in range(20):
+        obs, _ = env.reset(seed=seed)
+        for p in (obs["achieved_goal"], obs["desired_goal"]):
+            assert math.dist(p[:2], moved.center) > moved.radius + 0.03
+
+
+def test_unreachable_tool_targets_are_held_not_raised():
+    env = gym.make("LynxReach-v0")
+    env.reset(seed=0)
+    u = env.unwrapped
+    ix = u.OBS_INDEX
+    held = []
+    for _ in range(60):  # straight out along +x, beyond the reach
+        obs, _, _, _, info = env.step(np.array([1.0, 0.0, 0.3, 0.0], dtype=np.float32))
+        held.append(info["target_held"])
+        if info["target_held"]:
+            assert info["target_status"] in (TargetStatus.OUT_OF_REACH, TargetStatus.JOINT_RANGE)
+    assert held[0] is False
+    assert held[-1] is True
+    target = obs["observation"][ix["commanded_tool_position"]]
+    obs, *_ = env.step(np.array([1.0, 0.0, 0.3, 0.0], dtype=np.float32))
+    assert_close(obs["observation"][ix["commanded_tool_position"]], target, atol=0.0)
+    assert np.isfinite(obs["observation"]).all()
+    # The way back is open.
+    *_, info = env.step(np.array([-1.0, 0.0, 0.0, 0.0], dtype=np.float32))
+    assert info["target_status"] == TargetStatus.ACCEPTED
+
+
+def test_actions_are_clipped_and_checked():
+    a, b = gym.make("LynxReach-v0"), gym.make("LynxReach-v0")
+    a.reset(seed=0)
+    b.reset(seed=0)
+    _assert_same(a.step(np.full(4, 7.0)), b.step(np.ones(4)))
+    u = a.unwrapped
+    with pytest.raises(InvalidInputError, match=r"action must have shape \(4,\), got \(5,\)"):
+        u.step(np.zeros(5))
+    with pytest.raises(NonFiniteInputError, match="action must be finite"):
+        u.step(np.array([0.0, np.nan, 0.0, 0.0]))
+
+
+def test_control_period_must_be_a_multiple_of_the_physics_step():
+    assert check_control_dt(0.04, 0.002) == 20
+    env = ReachEnv(control_dt=0.02)
+    assert env.frame_skip == 10
+    assert env.dt == pytest.approx(0.02)
+    assert env.metadata["render_fps"] == 50
+    with pytest.raises(InvalidInputError, match=r"control_dt = 0.035 s is not a whole multiple"):
+        ReachEnv(control_dt=0.035)
+    with pytest.raises(InvalidInputError, match="control_dt must be a positive"):
+        ReachEnv(control_dt=0.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"control": "cartesian"}, r"control must be one of 'tool', 'joint', got 'cartesian'"),
+        ({"reward_type": "shaped"}, r"reward_type must be one of 'sparse', 'dense'"),
+        ({"collision_check": "never"}, "collision_check must be one of"),
+        ({"render_mode": "ansi"}, "render_mode must be None or one of"),
+        ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'default'"),
+        ({"distance_threshold": 0.0}, "distance_threshold must be > 0 m"),
+        ({"collision_penalty": -1.0}, "collision_penalty must be >= 0"),
+        ({"obstacle": (0.1, 0.1)}, "obstacle must be an ObstacleSpec or None"),
+        ({"goal_in_air_prob": 1.5}, r"goal_in_air_prob must be in \[0, 1\]"),
+        ({"position_step": 0.0}, "position_step must be a positive number"),
+        ({"camera": "side"}, "no camera named 'side'"),
+    ],
+    ids=lambda v: next(iter(v)) if isinstance(v, dict) else "",
+)
+def test_bad_arguments_raise_with_the_valid_choices(kwargs, message):
+    if "camera" in kwargs:  # checked when the renderer is made, at the first frame
+        env = PickAndPlaceEnv(render_mode="rgb_array", **kwargs)
+        env.reset(seed=0)
+        with pytest.raises(InvalidInputError, match=message):
+            env.render()
+        return
+    with pytest.raises(InvalidInputError, match=message):
+        PickAndPlaceEnv(**kwargs)
+
+
+def test_compute_reward_rejects_infos_that_do_not_fit_the_goals():
+    env = PickAndPlaceEnv(collision_penalty=1.0)
+    goals = np.zeros((5, 3))
+    with pytest.raises(InvalidInputError, match=r"info holds 3 collision flags for goals of batch"):
+        env.compute_reward(goals, goals, [{"collision": False}] * 3)
+    no_penalty = PickAndPlaceEnv()
+    assert (no_penalty.compute_reward(goals, goals, None) == 0.0).all()  # info unused
