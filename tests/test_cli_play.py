@@ -89,3 +89,5 @@ def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
     for alpha in ("+0", "+20", "-20", "+50", "-50"):
         assert (out / "plots" / f"rrr_workspace_alpha{alpha}.png").is_file()
     assert "e (300 mm, 250 mm, -40 deg): simulation says UNREACHABLE" in printed
+    assert "scripted expert, seed 0: success True" in printed
+    assert imageio.get_reader(out / "LynxPickAndPlace-v0_expert.mp4").count_frames() > 50

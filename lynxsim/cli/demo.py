@@ -77,7 +77,21 @@ def _simulations(args: argparse.Namespace) -> None:
         print(summary_row(report))
     print(f"\n3-RRR Figure 20 poses judged by simulation: {args.out / FIGURE20_FILE}")
     print((args.out / FIGURE20_FILE).read_text().rstrip())
+    _expert_episode(args)
     print(f"\nVideos and JSON reports in {args.out}/, plots in {args.out / 'plots'}/")
+
+
+def _expert_episode(args: argparse.Namespace) -> None:
+    from lynxsim.envs.evaluation import record_expert_episode
+
+    dest = args.out / "LynxPickAndPlace-v0_expert.mp4"
+    stats = record_expert_episode(dest, seed=0, quality=args.quality)
+    first = "-" if stats.first_success_step is None else str(stats.first_success_step)
+    print(
+        f"\nLynxPickAndPlace-v0, scripted expert, seed 0: success {stats.success} "
+        f"(first at step {first} of {stats.steps}), return {stats.episode_return:.1f}, "
+        f"arm-obstacle contact steps {stats.collision_steps}; video {dest}"
+    )
 
 
 def _demo(args: argparse.Namespace) -> int:
