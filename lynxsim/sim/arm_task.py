@@ -2,19 +2,16 @@
 
 from __future__ import annotations
 
-import contextlib
 import os
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
-import mujoco
 import numpy as np
 
 from lynxsim.sim.arm_playback import play_arm
-from lynxsim.sim.playback import Playback, StepHook
-from lynxsim.sim.recording import FrameRecorder
-from lynxsim.sim.render import RenderSettings, SceneRenderer
+from lynxsim.sim.playback import Playback
+from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
+from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.scene import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_scene
-from lynxsim.sim.video import mp4_writer
 from lynxsim.traj import Trajectory
 
 __all__ = ["GRIPPER_CLOSED_M", "GRIPPER_OPEN_M", "pick_and_place_gripper", "run_arm_trajectory"]
@@ -25,9 +22,6 @@ GRIPPER_CLOSED_M = 0.0
 """Commanded opening when gripping [m]; the cube (25 mm) stops the fingers."""
 _CLOSE_BEFORE_S = 0.25
 _OPEN_AFTER_S = 0.1
-
-ProgressFn = Callable[[float], None]
-"""Called with the fraction of the run done, 0..1."""
 
 
 def pick_and_place_gripper(duration_s: float) -> Callable[[float], float]:
@@ -43,32 +37,6 @@ def pick_and_place_gripper(duration_s: float) -> Callable[[float], float]:
         return GRIPPER_CLOSED_M
 
     return opening
-
-
-def _chain(*hooks: StepHook | None) -> StepHook | None:
-    active = [h for h in hooks if h is not None]
-    if not active:
-        return None
-
-    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
-        for h in active:
-            h(step, data, touching)
-
-    return hook
-
-
-@contextlib.contextmanager
-def _recorder(
-    model: mujoco.MjModel,
-    video: str | os.PathLike[str] | None,
-    settings: RenderSettings,
-    targets: np.ndarray,
-) -> Iterator[FrameRecorder | None]:
-    if video is None:
-        yield None
-        return
-    with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
-        yield FrameRecorder(renderer, sink, SceneIds.from_model(model).tool_site, targets)
 
 
 def run_arm_trajectory(
@@ -102,24 +70,17 @@ def run_arm_trajectory(
     """
     model = load_arm_scene(obstacle=obstacle, cube=cube)
     settings = render or RenderSettings()
-    total = trajectory.duration + settle_s
-    report_progress: StepHook | None = None
-    if progress is not None:
-        every = max(1, round(0.05 * total / model.opt.timestep))
-
-        def report_progress(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
-            if step % every == 0:
-                progress(min(1.0, data.time / total))
-
+    hook = progress_hook(trajectory.duration + settle_s, float(model.opt.timestep), progress)
     targets = np.array([p.position for p in trajectory.waypoints.poses])
-    with _recorder(model, video, settings, targets) as recorder:
+    tool_site = SceneIds.from_model(model).tool_site
+    with recorder(model, video, settings, tool_site, targets) as frames:
         playback = play_arm(
             model,
             trajectory,
             task=task,
             settle_s=settle_s,
             gripper_cmd=pick_and_place_gripper(trajectory.duration) if cube else None,
-            on_step=_chain(recorder, report_progress),
+            on_step=chain_hooks(frames, hook),
         )
     if progress is not None:
         progress(1.0)

@@ -1,15 +1,23 @@
-"""Recording a playback to MP4: frames at the video rate, overlays drawn per frame."""
+"""Step hooks of a playback: MP4 recording at the video rate, progress, chaining."""
 
 from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Callable, Iterator
 
 import mujoco
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.sim.render import Overlay, SceneRenderer
-from lynxsim.sim.video import FrameSink
+from lynxsim.sim.playback import StepHook
+from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
+from lynxsim.sim.video import FrameSink, mp4_writer
 
-__all__ = ["FrameRecorder"]
+__all__ = ["FrameRecorder", "ProgressFn", "chain_hooks", "progress_hook", "recorder"]
+
+ProgressFn = Callable[[float], None]
+"""Called with the fraction of a run done, 0..1."""
 
 
 class FrameRecorder:
@@ -51,3 +59,49 @@ class FrameRecorder:
         )
         self._sink.append_data(self._renderer.render(data, overlay))
         self.frames += 1
+
+
+@contextlib.contextmanager
+def recorder(
+    model: mujoco.MjModel,
+    video: str | os.PathLike[str] | None,
+    settings: RenderSettings,
+    site_id: int,
+    targets: npt.ArrayLike = (),
+) -> Iterator[FrameRecorder | None]:
+    """A :class:`FrameRecorder` writing ``video`` (None: no video, yields None).
+
+    The renderer and the MP4 writer are closed on exit; the file appears only
+    when complete.
+    """
+    if video is None:
+        yield None
+        return
+    with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
+        yield FrameRecorder(renderer, sink, site_id, targets)
+
+
+def progress_hook(total_s: float, dt: float, progress: ProgressFn | None) -> StepHook | None:
+    """A step hook calling ``progress(fraction)`` about every 5 % of ``total_s`` [s]."""
+    if progress is None:
+        return None
+    every = max(1, round(0.05 * total_s / dt))
+
+    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
+        if step % every == 0:
+            progress(min(1.0, data.time / total_s))
+
+    return hook
+
+
+def chain_hooks(*hooks: StepHook | None) -> StepHook | None:
+    """One step hook calling each given one in order (None if none is given)."""
+    active = [h for h in hooks if h is not None]
+    if not active:
+        return None
+
+    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
+        for h in active:
+            h(step, data, touching)
+
+    return hook

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import contextlib
 import os
-from collections.abc import Callable, Iterator
 
 import mujoco
 import numpy as np
@@ -17,19 +15,15 @@ from lynxsim.rrr.path import (
     PlatformPath,
     platform_path,
 )
-from lynxsim.sim.playback import Playback, StepHook
-from lynxsim.sim.recording import FrameRecorder
-from lynxsim.sim.render import RenderSettings, SceneRenderer
+from lynxsim.sim.playback import Playback
+from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
+from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr_playback import play_rrr, start_model
 from lynxsim.sim.rrr_scene import HOME_MODE, RRRIds
-from lynxsim.sim.video import mp4_writer
 from lynxsim.tasks import PlanarPose, Task
 from lynxsim.traj.kinds import TrajectoryKind
 
 __all__ = ["DEFAULT_RRR_RENDER", "path_from_task", "run_rrr_path", "run_rrr_task"]
-
-ProgressFn = Callable[[float], None]
-"""Called with the fraction of the run done, 0..1."""
 
 DEFAULT_RRR_RENDER = RenderSettings(camera="top")
 """Video defaults for the 3-RRR: 640x480 at 30 frames/s from the orthographic top camera."""
@@ -83,32 +77,6 @@ def path_from_task(
     )
 
 
-def _progress_hook(total_s: float, dt: float, progress: ProgressFn | None) -> StepHook | None:
-    if progress is None:
-        return None
-    every = max(1, round(0.05 * total_s / dt))
-
-    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
-        if step % every == 0:
-            progress(min(1.0, data.time / total_s))
-
-    return hook
-
-
-@contextlib.contextmanager
-def _recorder(
-    model: mujoco.MjModel,
-    video: str | os.PathLike[str] | None,
-    settings: RenderSettings,
-    targets: np.ndarray,
-) -> Iterator[FrameRecorder | None]:
-    if video is None:
-        yield None
-        return
-    with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
-        yield FrameRecorder(renderer, sink, RRRIds.from_model(model).centre_site, targets)
-
-
 def run_rrr_path(
     path: PlatformPath,
     *,
@@ -144,14 +112,8 @@ def run_rrr_path(
     mujoco.mj_kinematics(model, data)
     height = float(data.site_xpos[ids.centre_site][2])
     targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
-    hook = _progress_hook(path.duration + settle_s, float(model.opt.timestep), progress)
-    with _recorder(model, video, render, targets) as recorder:
-        hooks = [h for h in (recorder, hook) if h is not None]
-
-        def on_step(step: int, d: mujoco.MjData, touching: frozenset[int]) -> None:
-            for h in hooks:
-                h(step, d, touching)
-
+    hook = progress_hook(path.duration + settle_s, float(model.opt.timestep), progress)
+    with recorder(model, video, render, ids.centre_site, targets) as frames:
         playback = play_rrr(
             path,
             mode,
@@ -159,7 +121,7 @@ def run_rrr_path(
             model=model,
             data=data,
             settle_s=settle_s,
-            on_step=on_step if hooks else None,
+            on_step=chain_hooks(frames, hook),
         )
     if progress is not None:
         progress(1.0)
