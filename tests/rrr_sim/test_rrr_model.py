@@ -25,6 +25,7 @@ from lynxsim.sim.rrr_scene import (
 )
 from lynxsim.sim.rrr_verify import interference_at, settled_mode
 from tests.helpers import assert_close
+from tests.model_checks import assert_every_element_named, warnings_fired
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_E, FIGURE20_F
 
 GEOMETRY_TOL_M = 1e-9
@@ -43,20 +44,6 @@ HS805BB_KP = 555.0
 """kp = stall torque / 0.25 deg, as the arm's servos [N·m/rad]."""
 
 OBJ = mujoco.mjtObj
-NAMED_TYPES = {
-    "body": (OBJ.mjOBJ_BODY, "nbody"),
-    "joint": (OBJ.mjOBJ_JOINT, "njnt"),
-    "geom": (OBJ.mjOBJ_GEOM, "ngeom"),
-    "site": (OBJ.mjOBJ_SITE, "nsite"),
-    "actuator": (OBJ.mjOBJ_ACTUATOR, "nu"),
-    "camera": (OBJ.mjOBJ_CAMERA, "ncam"),
-    "light": (OBJ.mjOBJ_LIGHT, "nlight"),
-    "equality": (OBJ.mjOBJ_EQUALITY, "neq"),
-    "exclude": (OBJ.mjOBJ_EXCLUDE, "nexclude"),
-    "key": (OBJ.mjOBJ_KEY, "nkey"),
-    "material": (OBJ.mjOBJ_MATERIAL, "nmat"),
-    "texture": (OBJ.mjOBJ_TEXTURE, "ntex"),
-}
 
 MODELS = {
     "scene": load_rrr_scene,
@@ -65,20 +52,10 @@ MODELS = {
 }
 
 
-def _warnings(data: mujoco.MjData) -> dict[str, int]:
-    return {
-        mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(data.warning) if w.number
-    }
-
-
 @pytest.mark.parametrize("factory", MODELS.values(), ids=MODELS.keys())
 def test_every_element_is_named_uniquely(factory):
     model = factory()
-    for kind, (obj, count) in NAMED_TYPES.items():
-        names = [mujoco.mj_id2name(model, int(obj), i) for i in range(getattr(model, count))]
-        names = [n for n in names if not (kind == "body" and n == "world")]
-        assert all(names), f"unnamed {kind}: ids {[i for i, n in enumerate(names) if not n]}"
-        assert len(set(names)) == len(names), f"duplicate {kind} names: {names}"
+    assert_every_element_named(model)
 
 
 def test_compiler_reads_radians_and_options_are_the_house_defaults(rrr_scene):
@@ -155,7 +132,7 @@ def test_loops_stay_closed_at_rest(rrr_scene, rrr_ids, rrr_data):
         worst = max(worst, float(loop_closure_errors(rrr_data, rrr_ids).max()))
     assert worst < REST_LOOP_TOL_M
     assert_close(platform_pose(rrr_data, rrr_ids), HOME_POSE, atol=1e-9)
-    assert not _warnings(rrr_data)
+    assert not warnings_fired(rrr_data)
 
 
 def test_loops_are_connect_equalities_between_leg_tips_and_platform_joints(rrr_scene, rrr_ids):
@@ -204,7 +181,7 @@ def test_scene_steps_one_second_of_random_controls_without_warnings(rrr_scene, r
     for _ in range(round(SIM_DURATION_S / CONTROL_PERIOD_S)):
         rrr_data.ctrl[:] = rng.uniform(low, high)
         mujoco.mj_step(rrr_scene, rrr_data, nstep=per_control)
-    assert not _warnings(rrr_data)
+    assert not warnings_fired(rrr_data)
     assert np.isfinite(rrr_data.qpos).all()
     assert rrr_data.time == pytest.approx(SIM_DURATION_S)
 

@@ -24,6 +24,7 @@ from lynxsim.sim import (
     load_arm_scene,
 )
 from tests.helpers import assert_close
+from tests.model_checks import assert_every_element_named, warnings_fired
 
 POSITION_TOL_M = 1e-6
 """Agreement of MuJoCo's site positions with the DH chain [m]."""
@@ -61,21 +62,6 @@ FORCE_RANGE_RTOL = 5e-3
 """The model rounds datasheet torques to 3 significant digits."""
 
 OBJ = mujoco.mjtObj
-NAMED_TYPES = {
-    "body": (OBJ.mjOBJ_BODY, "nbody"),
-    "joint": (OBJ.mjOBJ_JOINT, "njnt"),
-    "geom": (OBJ.mjOBJ_GEOM, "ngeom"),
-    "site": (OBJ.mjOBJ_SITE, "nsite"),
-    "actuator": (OBJ.mjOBJ_ACTUATOR, "nu"),
-    "camera": (OBJ.mjOBJ_CAMERA, "ncam"),
-    "light": (OBJ.mjOBJ_LIGHT, "nlight"),
-    "tendon": (OBJ.mjOBJ_TENDON, "ntendon"),
-    "equality": (OBJ.mjOBJ_EQUALITY, "neq"),
-    "exclude": (OBJ.mjOBJ_EXCLUDE, "nexclude"),
-    "key": (OBJ.mjOBJ_KEY, "nkey"),
-    "material": (OBJ.mjOBJ_MATERIAL, "nmat"),
-    "texture": (OBJ.mjOBJ_TEXTURE, "ntex"),
-}
 
 SCENE_VARIANTS = {
     "robot": load_arm_model,
@@ -230,10 +216,7 @@ def test_moving_bodies_carry_servo_and_bracket_masses(arm_model):
 @pytest.mark.parametrize("model_factory", SCENE_VARIANTS.values(), ids=SCENE_VARIANTS.keys())
 def test_every_element_is_named_uniquely(model_factory):
     model = model_factory()
-    for kind, (obj, count) in NAMED_TYPES.items():
-        names = [mujoco.mj_id2name(model, int(obj), i) for i in range(getattr(model, count))]
-        assert all(names), f"unnamed {kind}: ids {[i for i, n in enumerate(names) if not n]}"
-        assert len(set(names)) == len(names), f"duplicate {kind} names: {names}"
+    assert_every_element_named(model)
 
 
 def test_scene_has_named_cameras_and_lights(scene_model):
@@ -253,10 +236,7 @@ def test_every_scene_steps_one_second_of_random_controls_without_warnings(model_
     for _ in range(round(SIM_DURATION_S / CONTROL_PERIOD_S)):
         data.ctrl[:] = rng.uniform(low, high)
         mujoco.mj_step(model, data, nstep=per_control)
-    warnings = {
-        mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(data.warning) if w.number
-    }
-    assert not warnings
+    assert not warnings_fired(data)
     assert np.isfinite(data.qpos).all()
     assert data.time == pytest.approx(SIM_DURATION_S)
 
