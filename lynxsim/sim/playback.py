@@ -203,8 +203,7 @@ def play(
         if gripper is not None and gripper_cmd is not None:
             data.ctrl[gripper] = gripper_cmd((k - presettle_steps) * dt)
         mujoco.mj_step(model, data)
-    data.time = 0.0
-    data.warning.number[:] = 0  # the record starts here
+    data.time = 0.0  # the record starts here; warnings of the hold still count
 
     tracker = ContactTracker(model, binding)
     robot_ids = np.flatnonzero(binding.robot_geoms)
