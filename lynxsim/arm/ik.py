@@ -119,8 +119,8 @@ class IKResult:
             )
         j = int(self.joint[index])
         return (
-            f"joint {j} out of range by {np.degrees(self.violation[index]):.2f} deg "
-            "in every solution"
+            "no solution within the joint ranges (the nearest candidate has joint "
+            f"{j} out of range by {np.degrees(self.violation[index]):.2f} deg)"
         )
 
     def raise_for_status(self, index: tuple[int, ...] | int = (), context: str = "") -> None:

@@ -37,13 +37,15 @@ def _fk(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(out, indent=2))
         return 0
-    x, y, z = out["tool_position"]
+    x, y, z = (u.fmt_length(v) for v in out["tool_position"])
     print(
-        f"tool  x {x:10.2f}  y {y:10.2f}  z {z:10.2f} {u.length}   "
-        f"pitch {out['pitch']:8.2f} {u.angle}   roll {out['roll']:8.2f} {u.angle}"
+        f"tool  x {x:>10s}  y {y:>10s}  z {z:>10s} {u.length}   "
+        f"pitch {u.fmt_angle(out['pitch']):>8s} {u.angle}   "
+        f"roll {u.fmt_angle(out['roll']):>8s} {u.angle}"
     )
     for name, o in out["frame_origins"].items():
-        print(f"  {name:7s} {o[0]:10.2f} {o[1]:10.2f} {o[2]:10.2f} {u.length}")
+        coords = " ".join(f"{u.fmt_length(v):>10s}" for v in o)
+        print(f"  {name:7s} {coords} {u.length}")
     return 0
 
 
@@ -71,7 +73,7 @@ def _ik(args: argparse.Namespace) -> int:
         print(json.dumps(out, indent=2))
         return 0
     q = json_list(u.angle_out(result.q))
-    print("q1..q5 [" + u.angle + "]: " + "  ".join(f"{v:.2f}" for v in q))
+    print("q1..q5 [" + u.angle + "]: " + "  ".join(u.fmt_angle(v) for v in q))
     n_valid = int(result.valid.sum())
     if n_valid > 1:
         print(f"({n_valid} valid solutions; --json lists them all)")

@@ -49,9 +49,7 @@ def format_report(report: RunReport) -> str:
     verdict = report.obstacle
     if verdict is None:
         lines.append("obstacle: none in the scene")
-    elif verdict.collided:
-        assert verdict.first_pair is not None
-        assert verdict.first_time_s is not None
+    elif verdict.collided and verdict.first_pair is not None:
         lines.append(
             f"obstacle: COLLISION at {verdict.first_time_s:.3f} s ({verdict.first_pair[0]} with "
             f"{verdict.first_pair[1]}), deepest {verdict.max_penetration_m * 1e3:.1f} mm, "

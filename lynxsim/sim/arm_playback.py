@@ -29,6 +29,9 @@ def arm_binding(model: mujoco.MjModel) -> RobotBinding:
     for g in (ids.table_geom, ids.floor_geom):
         if g is not None:
             support[g] = True
+    payload = mask.copy()
+    if ids.cube_geom is not None:
+        payload[ids.cube_geom] = True
     return RobotBinding(
         actuator_ids=np.asarray(ids.arm_actuators, dtype=np.intp),
         qpos_adr=np.asarray(ids.arm_qpos, dtype=np.intp),
@@ -37,6 +40,7 @@ def arm_binding(model: mujoco.MjModel) -> RobotBinding:
         obstacle_geoms=obstacle,
         support_geoms=support,
         gripper_actuator_id=ids.gripper_actuator,
+        payload_geoms=payload,
     )
 
 

@@ -68,6 +68,9 @@ class RobotBinding:
         obstacle_geoms: Mask over the obstacle's geoms, (ngeom,).
         support_geoms: Mask over the table/floor geoms, (ngeom,).
         gripper_actuator_id: The gripper's actuator, or None.
+        payload_geoms: Mask over what the robot carries (the cube), (ngeom,), or
+            None. A payload touching the obstacle is a collision of the robot and
+            counts in the clearance; its contacts with the robot or the table do not.
     """
 
     actuator_ids: IntArray
@@ -77,6 +80,15 @@ class RobotBinding:
     obstacle_geoms: BoolArray
     support_geoms: BoolArray
     gripper_actuator_id: int | None = None
+    payload_geoms: BoolArray | None = None
+
+    @property
+    def carried_geoms(self) -> BoolArray:
+        """Robot and payload geoms: what must not touch the obstacle, (ngeom,)."""
+        if self.payload_geoms is None:
+            return self.robot_geoms
+        carried: BoolArray = self.robot_geoms | self.payload_geoms
+        return carried
 
     @staticmethod
     def for_joints(model: mujoco.MjModel, joint_names: Iterable[str]) -> tuple[IntArray, IntArray]:

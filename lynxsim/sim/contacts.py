@@ -37,26 +37,32 @@ class ContactTracker:
         self.obstacle_steps = 0
 
     def update(self, data: mujoco.MjData) -> frozenset[int]:
-        """Record this step's contacts; returns the robot geoms touching the obstacle."""
+        """Record this step's contacts; returns the bodies touching the obstacle.
+
+        Robot and payload geoms count for the obstacle verdict; self-collisions
+        and table contacts are the robot's own.
+        """
         n = int(data.ncon)
         if n == 0:
             return frozenset()
         geoms = np.asarray(data.contact.geom[:n])
         dist = np.asarray(data.contact.dist[:n])
         robot = self._b.robot_geoms[geoms]  # (n, 2)
+        carried = self._b.carried_geoms[geoms]  # robot or payload, (n, 2)
         obstacle = self._b.obstacle_geoms[geoms].any(axis=1)
         both_robot = robot.all(axis=1)
         support = self._b.support_geoms[geoms].any(axis=1)
         # Contacts inside the margin but apart (dist > 0) do not count as touching.
-        wanted = (dist <= 0.0) & robot.any(axis=1) & (obstacle | both_robot | support)
+        hits_obstacle = carried.any(axis=1) & obstacle
+        wanted = (dist <= 0.0) & (hits_obstacle | (robot.any(axis=1) & (both_robot | support)))
         t = float(data.time)
         hit: set[int] = set()
         for k in np.flatnonzero(wanted):
             g1, g2 = int(geoms[k, 0]), int(geoms[k, 1])
-            if not robot[k, 0]:  # robot geom first
+            if not carried[k, 0]:  # robot (or payload) geom first
                 g1, g2 = g2, g1
             pen = float(-dist[k])
-            if obstacle[k]:
+            if hits_obstacle[k]:
                 table = self._obstacle
                 hit.add(g1)
                 if self._first is None:

@@ -116,7 +116,10 @@ def _clearance(
 def _check_ranges(
     model: mujoco.MjModel, binding: RobotBinding, q_cmd: FloatArray, dt: float
 ) -> None:
-    """Refuse commands outside the actuators' control ranges (= joint ranges)."""
+    """Refuse commands outside the actuators' control ranges (= joint ranges).
+
+    Sample ``k`` is the target of the step that ends at ``(k + 1) dt``, the time named.
+    """
     lo, hi = np.asarray(model.actuator_ctrlrange)[binding.actuator_ids].T
     excess = np.maximum(lo - q_cmd, q_cmd - hi)  # (T, n), > 0 outside
     k, j = np.unravel_index(int(np.argmax(excess)), excess.shape)
@@ -125,10 +128,10 @@ def _check_ranges(
         name = model.actuator(int(binding.actuator_ids[j])).name
         raise LimitViolationError(
             f"command leaves the range of joint {j + 1} ({name}) by {np.degrees(worst):.3f} deg "
-            f"at t = {k * dt:.3f} s; refused before playback",
+            f"at t = {(k + 1) * dt:.3f} s; refused before playback",
             joint=int(j) + 1,
             quantity="position",
-            time=k * dt,
+            time=(k + 1) * dt,
             segment=-1,
             value=float(q_cmd[k, j]),
             limit=float(lo[j] if q_cmd[k, j] < lo[j] else hi[j]),
@@ -206,7 +209,7 @@ def play(
     data.time = 0.0  # the record starts here; warnings of the hold still count
 
     tracker = ContactTracker(model, binding)
-    robot_ids = np.flatnonzero(binding.robot_geoms)
+    robot_ids = np.flatnonzero(binding.carried_geoms)
     obstacle_ids = np.flatnonzero(binding.obstacle_geoms)
     pairs = len(robot_ids) > 0 and len(obstacle_ids) > 0
     rbound = np.asarray(model.geom_rbound)
@@ -228,9 +231,11 @@ def play(
         if gripper is not None and gripper_cmd is not None:
             data.ctrl[gripper] = gripper_cmd(k * dt)
         mujoco.mj_step(model, data)
-        # mj_step leaves positions of the state it started from: bring sites and
-        # geoms to the new qpos so that they match data.time and the command.
+        # mj_step leaves positions and contacts of the state it started from:
+        # bring sites, geoms and contacts to the new qpos, so that they match
+        # data.time and the command.
         mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
         if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
             diverged_at = float(data.time)
             recorded = k

@@ -37,12 +37,12 @@ class ContactPair:
 
 @dataclass(frozen=True)
 class CollisionVerdict:
-    """Did any robot geom touch the obstacle, and how badly.
+    """Did any robot geom, or what it carries, touch the obstacle, and how badly.
 
     Attributes:
-        collided: True if any robot geom touched the obstacle at any physics step.
+        collided: True if any robot or payload geom touched the obstacle at any physics step.
         first_time_s: Time of the first contact [s], or None.
-        first_pair: The (robot geom, obstacle geom) names of that contact, or None.
+        first_pair: The (robot or payload geom, obstacle geom) names of that contact, or None.
         max_penetration_m: Deepest penetration [m] (0 when clear).
         steps_in_contact: Number of physics steps with such a contact.
         pairs: Every geom pair that touched.
@@ -75,7 +75,7 @@ class RunReport:
         max_torque_ratio: Largest |actuator force| / force limit per joint, (5,)
             (1.0 means the servo saturated at its datasheet stall torque).
         obstacle: The obstacle-collision verdict (None if the scene has no obstacle).
-        min_clearance_m: Smallest distance between any robot geom and the obstacle [m]
+        min_clearance_m: Smallest distance between any robot or payload geom and the obstacle [m]
             (negative: penetration; None without obstacle).
         min_clearance_time_s: When it occurred [s].
         self_collisions: Robot-robot geom pairs that touched.

@@ -26,9 +26,9 @@ from lynxsim.sim import (
 from tests.helpers import assert_close
 from tests.model_checks import assert_every_element_named, warnings_fired
 
-POSITION_TOL_M = 1e-6
+POSITION_TOL_M = 1e-12
 """Agreement of MuJoCo's site positions with the DH chain [m]."""
-ROTATION_TOL = 1e-6
+ROTATION_TOL = 1e-12
 """Agreement of MuJoCo's site orientations with the DH chain (matrix entries) [-]."""
 REPORT_POINT_TOL_M = 5e-5
 """Agreement with the report's task points; its joint angles are rounded to 0.01 deg [m]."""

@@ -61,14 +61,34 @@ def test_plain_task_hits_the_obstacle_between_p2_and_p3(pick_and_place, kind):
     assert report.healthy
 
 
-def test_via_points_with_straight_lines_clear_the_obstacle():
+@pytest.mark.parametrize("cube", [False, True], ids=["arm", "arm_and_cube"])
+def test_via_points_with_straight_lines_clear_the_obstacle(cube):
     trajectory = build_trajectory(load_task(VIA_POINTS), TrajectoryKind.LINE)
-    report = play_arm(load_arm_scene(cube=False), trajectory, task="via").report
+    report = run_arm_trajectory(trajectory, task="via", cube=cube).report
     assert not report.collided
     assert report.obstacle.steps_in_contact == 0
     # The report's via points pass the cylinder closely but clear it.
     assert 0.005 < report.min_clearance_m < 0.05
     assert report.healthy
+
+
+def test_carried_cube_hitting_the_obstacle_is_a_collision(pick_and_place):
+    # On the straight line from P2 to P3 the gripped cube reaches the cylinder
+    # before any part of the arm does.
+    trajectory = build_trajectory(pick_and_place, TrajectoryKind.LINE)
+    with_cube = run_arm_trajectory(trajectory, task="p", cube=True).report
+    arm_only = run_arm_trajectory(trajectory, task="p", cube=False).report
+    assert with_cube.obstacle.first_pair == ("cube", "obstacle")
+    assert with_cube.obstacle.first_time_s < arm_only.obstacle.first_time_s
+    assert "cube" not in {p.geom1 for p in with_cube.floor_contacts + with_cube.self_collisions}
+
+
+def test_contacts_and_clearance_describe_the_same_instant(pick_and_place):
+    playback = play_arm(
+        load_arm_scene(cube=False), build_trajectory(pick_and_place, "quintic"), task="p"
+    )
+    first_negative = playback.log.time_s[np.argmax(playback.log.clearance_m < 0.0)]
+    assert playback.report.obstacle.first_time_s == pytest.approx(first_negative)
 
 
 def test_path_far_from_the_obstacle_does_not_touch_it():
@@ -96,7 +116,7 @@ def test_commands_outside_the_joint_ranges_are_refused_before_playback():
     q_cmd = np.zeros((100, 5))
     q_cmd[60:, 2] = 0.2  # elbow range is [-145, 0] deg
     with pytest.raises(
-        LimitViolationError, match=r"joint 3 \(elbow\) by 11\.459 deg at t = 0\.120"
+        LimitViolationError, match=r"joint 3 \(elbow\) by 11\.459 deg at t = 0\.122"
     ):
         play(model, data, arm_binding(model), q_cmd, np.zeros((100, 3)), task="t", trajectory="t")
     assert data.time == 0.0  # nothing was simulated
