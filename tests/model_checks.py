@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import mujoco
+import numpy as np
 
 _OBJ = mujoco.mjtObj
 NAMED_TYPES = {
@@ -36,3 +37,18 @@ def warnings_fired(data: mujoco.MjData) -> dict[str, int]:
     return {
         mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(data.warning) if w.number
     }
+
+
+def step_random_controls(
+    model: mujoco.MjModel, data: mujoco.MjData, duration_s: float, control_period_s: float
+) -> None:
+    """Step ``duration_s`` [s] with controls drawn uniformly from the control ranges.
+
+    The controls change every ``control_period_s`` [s]; the draw is seeded (7).
+    """
+    rng = np.random.default_rng(7)
+    low, high = model.actuator_ctrlrange.T
+    per_control = round(control_period_s / model.opt.timestep)
+    for _ in range(round(duration_s / control_period_s)):
+        data.ctrl[:] = rng.uniform(low, high)
+        mujoco.mj_step(model, data, nstep=per_control)

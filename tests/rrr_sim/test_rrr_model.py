@@ -25,7 +25,11 @@ from lynxsim.sim.rrr_scene import (
 )
 from lynxsim.sim.rrr_verify import interference_at, settled_mode
 from tests.helpers import assert_close
-from tests.model_checks import assert_every_element_named, warnings_fired
+from tests.model_checks import (
+    assert_every_element_named,
+    step_random_controls,
+    warnings_fired,
+)
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_E, FIGURE20_F
 
 GEOMETRY_TOL_M = 1e-9
@@ -175,12 +179,7 @@ def test_every_joint_turns_about_z_and_only_the_platform_is_free(rrr_scene):
 
 
 def test_scene_steps_one_second_of_random_controls_without_warnings(rrr_scene, rrr_ids, rrr_data):
-    rng = np.random.default_rng(7)
-    low, high = rrr_scene.actuator_ctrlrange.T
-    per_control = round(CONTROL_PERIOD_S / rrr_scene.opt.timestep)
-    for _ in range(round(SIM_DURATION_S / CONTROL_PERIOD_S)):
-        rrr_data.ctrl[:] = rng.uniform(low, high)
-        mujoco.mj_step(rrr_scene, rrr_data, nstep=per_control)
+    step_random_controls(rrr_scene, rrr_data, SIM_DURATION_S, CONTROL_PERIOD_S)
     assert not warnings_fired(rrr_data)
     assert np.isfinite(rrr_data.qpos).all()
     assert rrr_data.time == pytest.approx(SIM_DURATION_S)

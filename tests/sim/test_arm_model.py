@@ -24,7 +24,11 @@ from lynxsim.sim import (
     load_arm_scene,
 )
 from tests.helpers import assert_close
-from tests.model_checks import assert_every_element_named, warnings_fired
+from tests.model_checks import (
+    assert_every_element_named,
+    step_random_controls,
+    warnings_fired,
+)
 
 POSITION_TOL_M = 1e-12
 """Agreement of MuJoCo's site positions with the DH chain [m]."""
@@ -230,12 +234,7 @@ def test_every_scene_steps_one_second_of_random_controls_without_warnings(model_
     model = model_factory()
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, _id(model, OBJ.mjOBJ_KEY, HOME_KEY))
-    rng = np.random.default_rng(7)
-    low, high = model.actuator_ctrlrange.T
-    per_control = round(CONTROL_PERIOD_S / model.opt.timestep)
-    for _ in range(round(SIM_DURATION_S / CONTROL_PERIOD_S)):
-        data.ctrl[:] = rng.uniform(low, high)
-        mujoco.mj_step(model, data, nstep=per_control)
+    step_random_controls(model, data, SIM_DURATION_S, CONTROL_PERIOD_S)
     assert not warnings_fired(data)
     assert np.isfinite(data.qpos).all()
     assert data.time == pytest.approx(SIM_DURATION_S)
