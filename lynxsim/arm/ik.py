@@ -17,8 +17,13 @@ the reach in the arm's vertical plane changes sign: the arm then leans back
 over its base, which is how it reaches targets behind the base's plane (x < 0).
 Candidates on the other side describe the same physical tool direction, so
 their pitch, which is measured towards the direction q1 points, is
-``pi - pitch``. Candidates outside the joint ranges are discarded; the outcome
-of each target is an :class:`IKStatus`.
+``pi - pitch``. Candidates outside the joint ranges (to
+:data:`~lynxsim.angles.LIMIT_TOL`) are discarded; the outcome of each target is
+an :class:`IKStatus`.
+
+One target at a time, :func:`lynxsim.arm.scalar.ik_one` evaluates the same
+closed form with :mod:`math` (NumPy's per-call overhead would cost ~30 times
+more); ``tests/arm/test_ik_scalar.py`` holds the two to the same answers.
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import LIMIT_TOL, wrap_angle
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
 from lynxsim.errors import (
     InvalidInputError,
@@ -37,19 +43,9 @@ from lynxsim.errors import (
     OutOfReachError,
 )
 
-__all__ = ["IKResult", "IKStatus", "ik", "ik_one", "wrap_angle"]
+__all__ = ["IKResult", "IKStatus", "ik"]
 
 FloatArray = npt.NDArray[np.float64]
-
-_TAU = 2.0 * np.pi
-
-LIMIT_TOL = 1e-7
-"""Slack allowed on joint limits [rad] and on the reach test (on cos q3) [-].
-
-At a stretched or folded elbow (sin q3 = 0) the closed form loses half the
-digits: a rounding of 1e-16 in cos q3 moves q3, and so q4, by ~1e-8 rad. The
-slack keeps such poses on the joint limits solvable; it is 6e-6 degrees.
-"""
 
 
 class IKStatus(enum.IntEnum):
@@ -61,23 +57,13 @@ class IKStatus(enum.IntEnum):
     NOT_FINITE = 3
 
 
-def wrap_angle(angle: npt.ArrayLike) -> FloatArray:
-    """Wrap angles into [-pi, pi] [rad] (a new array; exact for |angle| < 1e15)."""
-    a = np.asarray(angle, dtype=float)
-    out = a * (1.0 / _TAU)
-    np.rint(out, out=out)
-    out *= -_TAU
-    out += a
-    return out
-
-
 @dataclass(frozen=True)
 class IKResult:
     """Solutions of a batch of IK targets, batch shape ``B``.
 
     Attributes:
         q: Selected solution, shape B + (5,) [rad], inside the joint ranges to
-            ``LIMIT_TOL``; NaN where ``status`` is not OK.
+            :data:`~lynxsim.angles.LIMIT_TOL`; NaN where ``status`` is not OK.
         status: :class:`IKStatus` codes, shape B, int8.
         joint: 1-based joint that blocks a JOINT_RANGE target (the least
             violated candidate's worst joint), else 0; shape B, int8.
@@ -286,37 +272,3 @@ def ik(
         valid=valid.T.reshape(batch + (4,)),
         reach_m=(l2, l3),
     )
-
-
-def ik_one(
-    position: npt.ArrayLike,
-    pitch: float,
-    roll: float | None = None,
-    *,
-    q_ref: npt.ArrayLike | None = None,
-    geometry: ArmGeometry = LYNX_ARM,
-) -> FloatArray:
-    """Solve one target or raise.
-
-    Args:
-        position: Tool point, shape (3,) [m].
-        pitch: Tool pitch [rad].
-        roll: Wrist roll [rad] (default 0, or ``q_ref``'s).
-        q_ref: Reference joints, shape (5,) [rad], to pick among solutions.
-        geometry: The arm description.
-
-    Returns:
-        Joint angles, shape (5,) [rad].
-
-    Raises:
-        NonFiniteInputError: A coordinate is NaN or infinite.
-        OutOfReachError: The wrist point is outside the links' reach.
-        JointRangeError: Every solution violates a joint range (names the joint).
-        InvalidInputError: ``position`` is not a 3-vector.
-    """
-    p = np.asarray(position, dtype=float)
-    if p.shape != (3,):
-        raise InvalidInputError(f"position must have shape (3,), got {p.shape}")
-    result = ik(p, pitch, roll, q_ref=q_ref, geometry=geometry)
-    result.raise_for_status()
-    return result.q

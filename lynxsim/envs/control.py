@@ -12,8 +12,7 @@ import enum
 import math
 from collections.abc import Sequence
 
-from lynxsim.arm import LYNX_ARM, IKStatus
-from lynxsim.envs.kinematics import ik_nearest, tool_pose_of
+from lynxsim.arm import LYNX_ARM, IKStatus, ik_nearest, tool_pose_of
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["ControlMode", "JointSpaceController", "TargetStatus", "ToolSpaceController"]
@@ -53,7 +52,7 @@ def _check_positive(**values: float) -> None:
 
 
 class ToolSpaceController:
-    """Tool-space deltas, turned into joint targets by :func:`~lynxsim.envs.kinematics.ik_nearest`.
+    """Tool-space deltas, turned into joint targets by :func:`~lynxsim.arm.ik_nearest`.
 
     The requested tool point is clipped to a box and the pitch to a range; an
     unsolvable or discontinuous request holds the previous (feasible) target.

@@ -29,9 +29,9 @@ import gymnasium as gym
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.arm import ik_nearest
 from lynxsim.envs.base import LynxArmEnv
 from lynxsim.envs.control import ToolSpaceController
-from lynxsim.envs.kinematics import ik_nearest
 from lynxsim.envs.pick_and_place import CUBE_HALF_SIZE_M, PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.workspace import (

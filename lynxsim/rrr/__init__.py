@@ -33,7 +33,6 @@ from lynxsim.rrr.orientation import (
     orientation_range,
     orientation_range_in_mode,
 )
-from lynxsim.rrr.report import FIGURE20_POSES, figure20_table, format_figure20_table
 from lynxsim.rrr.workspace import (
     LegAnnuli,
     WorkspaceMap,
@@ -45,7 +44,6 @@ from lynxsim.rrr.workspace import (
 
 __all__ = [
     "CLOSURE_TOL",
-    "FIGURE20_POSES",
     "MAX_ASSEMBLY_MODES",
     "MODE_SIGNS",
     "N_MODES",
@@ -63,11 +61,9 @@ __all__ = [
     "WorkspaceMap",
     "constraint_jacobians",
     "elbow_points",
-    "figure20_table",
     "fk_all",
     "fk_near",
     "fk_path",
-    "format_figure20_table",
     "forward_jacobian",
     "grid_extent",
     "ik",

@@ -26,9 +26,9 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import wrap_angle
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array, platform_joints
-from lynxsim.rrr.ik import wrap_angle
 from lynxsim.rrr.jacobian import det3
 from lynxsim.rrr.modes import mode_index
 

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import wrap_angle
 from lynxsim.errors import (
     InvalidInputError,
     NonFiniteInputError,
@@ -40,7 +41,7 @@ __all__ = [
     "ik",
     "ik_one",
     "leg_points",
-    "wrap_angle",
+    "wrap_angle",  # re-exported from lynxsim.angles for older importers
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -70,13 +71,6 @@ class LegStatus(enum.IntEnum):
     TOO_NEAR = 2
     """``|P_i - B_i| < |s_a - L|``: the leg cannot fold that short."""
     NOT_FINITE = 3
-
-
-def wrap_angle(angle: npt.ArrayLike) -> FloatArray:
-    """Wrap angles into [-pi, pi] [rad] (a new array)."""
-    a = np.asarray(angle, dtype=float)
-    out: FloatArray = a - 2.0 * np.pi * np.rint(a / (2.0 * np.pi))
-    return out
 
 
 def _fmt_pose(pose: FloatArray) -> str:

@@ -17,9 +17,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import wrap_angle
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry
-from lynxsim.rrr.ik import ik, wrap_angle
+from lynxsim.rrr.ik import ik
 from lynxsim.rrr.jacobian import singularity_measures
 from lynxsim.rrr.modes import _check_index
 

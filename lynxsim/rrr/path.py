@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import wrap_angle
 from lynxsim.errors import (
     InvalidInputError,
     NonFiniteInputError,
@@ -38,7 +39,6 @@ from lynxsim.errors import (
 )
 from lynxsim.rrr import RRR_ROBOT, RRRGeometry, ik, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
-from lynxsim.rrr.ik import wrap_angle
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
 
@@ -432,7 +432,7 @@ def actuated_window(geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
     """Centre of each actuated angle's range: direction from ``B_i`` to ``C_b``, (3,) [rad].
 
     Leg ``i``'s actuated angle is kept in ``[centre_i - pi, centre_i + pi]``
-    (the actuators' ``ctrlrange`` in ``models/rrr/rrr.xml``), so that no
+    (the actuators' ``ctrlrange`` in ``lynxsim/models/rrr/rrr.xml``), so that no
     command wraps.
     """
     d = np.asarray(geometry.base_centre) - geometry.base

@@ -24,9 +24,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import wrap_angle
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, rotation
-from lynxsim.rrr.ik import REACH_TOL, wrap_angle
+from lynxsim.rrr.ik import REACH_TOL
 from lynxsim.rrr.modes import MODE_SIGNS, N_MODES, _check_index
 
 __all__ = [

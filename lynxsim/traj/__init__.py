@@ -13,7 +13,7 @@ from lynxsim.traj.build import build_trajectory, generate
 from lynxsim.traj.cartesian import LineSegment, cartesian_line
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import AL5D_SERVOS, DEFAULT_LIMITS, JointLimits, ServoSpec
+from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.lspb import lspb
 from lynxsim.traj.polynomial import (
     cubic,
@@ -28,7 +28,6 @@ from lynxsim.traj.trajectory import PolynomialSegment, Segment, Trajectory, Traj
 from lynxsim.traj.waypoints import ArmPose, JointPose, Waypoints, WaypointsLike, resolve_waypoints
 
 __all__ = [
-    "AL5D_SERVOS",
     "DEFAULT_LIMITS",
     "ArmPose",
     "Durations",
@@ -37,7 +36,6 @@ __all__ = [
     "LineSegment",
     "PolynomialSegment",
     "Segment",
-    "ServoSpec",
     "Trajectory",
     "TrajectoryKind",
     "TrajectorySample",

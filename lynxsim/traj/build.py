@@ -104,13 +104,13 @@ def build_trajectory(
         InvalidInputError: The task is not for the arm, or the type is unknown.
         LynxsimError: Whatever the generator raises (unreachable pose, limits).
     """
-    if task.robot != "arm":
+    poses = [p for p in task.poses if isinstance(p, ArmPose | JointPose)]
+    if len(poses) != len(task.poses):
         raise InvalidInputError(
-            f"task {task.name!r} is for robot {task.robot!r}; trajectories are built for "
-            "robot 'arm' only"
+            f"task {task.name!r} is for robot {task.robot!r}; joint trajectories are built "
+            "from arm poses only"
         )
     chosen = task.trajectory if kind is None else _kind(kind)
-    poses = [p for p in task.poses if isinstance(p, ArmPose | JointPose)]
     return generate(
         chosen,
         poses,

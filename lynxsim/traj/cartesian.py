@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry, ik, wrap_angle
+from lynxsim.angles import LIMIT_TOL, wrap_angle
+from lynxsim.arm import LYNX_ARM, ArmGeometry, ik
 from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
 from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
 from lynxsim.traj.kinds import TrajectoryKind
@@ -35,9 +36,6 @@ from lynxsim.traj.waypoints import ArmPose, WaypointsLike, resolve_waypoints
 __all__ = ["LineSegment", "cartesian_line"]
 
 FloatArray = npt.NDArray[np.float64]
-
-REACH_TOL = 1e-9
-"""Slack on the reach test ``|cos q3| <= 1`` [-], as the arm's IK."""
 
 JUMP_FACTOR = 2.0
 """A grid step moving a joint more than this many times its rate allows is a jump [-]."""
@@ -221,7 +219,8 @@ class _UnitPath:
 
     def check_reach(self) -> None:
         """Raise if the line leaves the reach or passes a singular configuration."""
-        out = np.flatnonzero(np.abs(self.cos3) > 1.0 + REACH_TOL)
+        # The IK's reach test: a line between poses it solves is not refused at its ends.
+        out = np.flatnonzero(np.abs(self.cos3) > 1.0 + LIMIT_TOL)
         if out.size:
             raise OutOfReachError(f"{self.label} leaves the arm's reach {self.at(int(out[0]))}")
         bad = np.argwhere(~np.isfinite(self.states[1:]))

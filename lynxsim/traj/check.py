@@ -16,6 +16,7 @@ from typing import NamedTuple, NoReturn
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import LimitViolationError
 from lynxsim.traj.trajectory import Segment, Trajectory
@@ -23,7 +24,6 @@ from lynxsim.traj.trajectory import Segment, Trajectory
 __all__ = [
     "CHECK_POINTS",
     "LIMIT_RTOL",
-    "RANGE_TOL",
     "Extremes",
     "check_grid",
     "check_trajectory",
@@ -37,9 +37,6 @@ CHECK_POINTS = 1025
 
 LIMIT_RTOL = 1e-9
 """Relative slack on the velocity, acceleration and jerk limits [-]."""
-
-RANGE_TOL = 1e-9
-"""Slack on the joint ranges [rad]."""
 
 _CANDIDATES = 2
 """Local grid maxima refined per joint, order and sign [-]."""
@@ -233,7 +230,7 @@ def check_trajectory(
 
     excess = value[:, 0] - bounds[0]  # (K, 2, 5) [rad]
     k, side, j = _argmax(excess)
-    if excess[k, side, j] > RANGE_TOL:
+    if excess[k, side, j] > LIMIT_TOL:
         q = float(sign[side, 0] * value[k, 0, side, j])
         lo, hi = np.degrees(geometry.lower[j]), np.degrees(geometry.upper[j])
         fail(

@@ -26,9 +26,10 @@ import numpy as np
 import numpy.typing as npt
 import ruckig  # type: ignore[import-not-found]  # ships no type information
 
+from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import SegmentDurationError, TrajectoryError
-from lynxsim.traj.check import RANGE_TOL, check_trajectory
+from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT
@@ -144,7 +145,7 @@ def _overshoots(plans: list[ruckig.Trajectory], geometry: ArmGeometry) -> list[t
     found = []
     for k, plan in enumerate(plans):
         for j, ext in enumerate(plan.position_extrema):
-            if ext.min < geometry.lower[j] - RANGE_TOL or ext.max > geometry.upper[j] + RANGE_TOL:
+            if ext.min < geometry.lower[j] - LIMIT_TOL or ext.max > geometry.upper[j] + LIMIT_TOL:
                 found.append((k, j))
     return found
 

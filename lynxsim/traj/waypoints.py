@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry, IKStatus, ik, tool_pose
 from lynxsim.errors import (
     InvalidInputError,
@@ -26,9 +27,6 @@ from lynxsim.errors import (
 __all__ = ["ArmPose", "JointPose", "Waypoints", "WaypointsLike", "resolve_waypoints"]
 
 FloatArray = npt.NDArray[np.float64]
-
-RANGE_TOL = 1e-9
-"""Slack on the joint ranges when joints are given directly [rad]."""
 
 
 def _floats(values: npt.ArrayLike, n: int, what: str) -> tuple[float, ...]:
@@ -119,7 +117,7 @@ def _check_range(q: FloatArray, name: str, geometry: ArmGeometry) -> None:
     above = q - geometry.upper
     excess = np.maximum(below, above)
     j = int(np.argmax(excess))
-    if excess[j] > RANGE_TOL:
+    if excess[j] > LIMIT_TOL:
         lo, hi = np.degrees(geometry.lower[j]), np.degrees(geometry.upper[j])
         raise JointRangeError(
             f"waypoint {name}: joint {j + 1} ({geometry.joint_names[j]}) = "

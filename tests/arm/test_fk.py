@@ -11,7 +11,7 @@ import pytest
 
 from lynxsim.arm import LYNX_ARM, fk, frame_origins, frame_transforms, ik, tool_pose
 from lynxsim.errors import InvalidInputError
-from lynxsim.reference import FK_CASES, TABLE4, TABLE4_P1_ELBOW_MM, TABLE4_P1_WRIST_MM
+from lynxsim.reproduce.arm_tables import FK_CASES, TABLE4, TABLE4_P1_ELBOW_MM, TABLE4_P1_WRIST_MM
 from tests.helpers import assert_close
 
 REPORT_MM = 0.05

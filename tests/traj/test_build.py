@@ -12,8 +12,9 @@ import pytest
 
 from lynxsim.arm import tool_pose
 from lynxsim.errors import InvalidInputError, OutOfReachError
-from lynxsim.plots.trajectory import inside_obstacle
-from lynxsim.reference import TABLE4
+from lynxsim.plots.obstacles import inside_any
+from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.tasks import PlanarPose, Task, load_task
 from lynxsim.traj import ArmPose, TrajectoryKind, build_trajectory, generate
 from tests.helpers import assert_close
@@ -58,7 +59,7 @@ def test_plain_task_crosses_the_obstacle_in_every_type(kind, pick_and_place):
     # The report: "the plain task passes through the obstacle between P2 and P3".
     traj = build_trajectory(pick_and_place, kind)
     t = traj.times_at_rate(500.0)
-    inside = inside_obstacle(tool_pose(traj.sample(t).q).position)
+    inside = inside_any(tool_pose(traj.sample(t).q).position, (REPORT_CYLINDER,))
     assert inside.any()
     assert (t[inside] > traj.waypoint_times[1]).all()
     assert (t[inside] < traj.waypoint_times[2]).all()
@@ -68,7 +69,7 @@ def test_via_points_with_straight_lines_avoid_the_obstacle(obstacle_avoidance):
     traj = build_trajectory(obstacle_avoidance)
     assert traj.kind is TrajectoryKind.LINE
     path = tool_pose(traj.sample(traj.times_at_rate(1000.0)).q).position
-    assert not inside_obstacle(path).any()
+    assert not inside_any(path, (REPORT_CYLINDER,)).any()
 
 
 def test_unknown_type_lists_the_valid_ones():

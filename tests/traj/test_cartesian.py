@@ -7,7 +7,7 @@ import pytest
 
 from lynxsim.arm import LYNX_ARM, ik, tool_pose
 from lynxsim.errors import LimitViolationError, OutOfReachError, PathError
-from lynxsim.reference import TABLE4
+from lynxsim.reproduce.arm_tables import TABLE4
 from lynxsim.traj import ArmPose, LineSegment, cartesian_line
 from lynxsim.traj.cartesian import _branch
 from lynxsim.traj.polynomial import quintic_scaling

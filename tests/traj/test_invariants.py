@@ -50,6 +50,7 @@ def _build(kind: TrajectoryKind, rng: np.random.Generator, case: int) -> tuple[T
     return traj, pass_through
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", list(TrajectoryKind), ids=lambda k: k.value)
 def test_random_waypoints_keep_every_promise(kind: TrajectoryKind):
     rng = np.random.default_rng([SEED, list(TrajectoryKind).index(kind)])

@@ -1,34 +1,14 @@
-"""Default servo limits, their derivation, and the limit type."""
+"""The limit type, and the arm's default limits derived from its servos (lynxsim.arm.servos)."""
 
 from __future__ import annotations
-
-import math
 
 import numpy as np
 import pytest
 
-from lynxsim.arm import LYNX_ARM
+from lynxsim.arm.servos import ACCELERATION_RAMP_S, AL5D_SERVOS, JERK_RAMP_S, SPEED_DERATING
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.traj import AL5D_SERVOS, DEFAULT_LIMITS, JointLimits
-from lynxsim.traj.limits import ACCELERATION_RAMP_S, JERK_RAMP_S, SPEED_DERATING
+from lynxsim.traj import DEFAULT_LIMITS, JointLimits
 from tests.helpers import assert_close
-
-
-def test_servos_are_the_al5d_ones_in_joint_order():
-    assert [s.model for s in AL5D_SERVOS] == [
-        "HS-485HB",
-        "HS-805BB",
-        "HS-755HB",
-        "HS-645MG",
-        "HS-225MG",
-    ]
-    assert tuple(s.joint for s in AL5D_SERVOS) == LYNX_ARM.joint_names
-
-
-def test_base_servo_no_load_speed_matches_its_datasheet():
-    # 0.18 s per 60 deg at 6.0 V.
-    assert AL5D_SERVOS[0].no_load_speed == pytest.approx(math.radians(60) / 0.18)
-    assert AL5D_SERVOS[0].no_load_speed == pytest.approx(5.82, abs=0.005)
 
 
 def test_default_limits_derive_from_the_servos():

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from lynxsim.plots.trajectory import inside_obstacle, plot_joint_profiles, plot_tool_paths
+from lynxsim.plots.obstacles import inside_any
+from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
+from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.traj import cubic, free_motion, quintic
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -30,6 +32,6 @@ def test_tool_paths_png(tmp_path):
     assert dest.read_bytes().startswith(PNG_MAGIC)
 
 
-def test_inside_obstacle_is_the_cylinder_of_the_report():
-    p = np.array([[0.15, 0.15, 0.2], [0.15, 0.185, 0.2], [0.15, 0.15, 0.41], [0.15, 0.15, -0.01]])
-    assert inside_obstacle(p).tolist() == [True, True, False, False]
+def test_inside_any_is_the_cylinder_of_the_report_standing_on_the_table():
+    p = np.array([[0.15, 0.15, 0.2], [0.15, 0.185, 0.2], [0.15, 0.15, 0.41], [0.15, 0.15, -0.02]])
+    assert inside_any(p, (REPORT_CYLINDER,)).tolist() == [True, True, False, False]

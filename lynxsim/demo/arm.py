@@ -13,7 +13,7 @@ from pathlib import Path
 
 from lynxsim.errors import LynxsimError
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
-from lynxsim.sim.arm_task import run_arm_trajectory
+from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.tasks import Task

@@ -20,9 +20,9 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import PlatformPath, actuated_path
-from lynxsim.sim.arm_playback import physics_grid
+from lynxsim.sim.arm.playback import physics_grid
 from lynxsim.sim.playback import Playback, StepHook, play
-from lynxsim.sim.rrr_scene import (
+from lynxsim.sim.rrr.model import (
     RRRIds,
     assembly_qpos,
     load_rrr_scene,
@@ -204,7 +204,7 @@ def play_rrr(
 
     The playback resets the mechanism to the model's ``qpos0``, so the model
     must be written at the path's first pose in ``mode``
-    (:func:`lynxsim.sim.rrr_scene.load_rrr_scene` with that pose, or
+    (:func:`lynxsim.sim.rrr.model.load_rrr_scene` with that pose, or
     :func:`start_model`); by default it is built here.
 
     Args:

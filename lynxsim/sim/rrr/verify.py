@@ -29,10 +29,10 @@ from lynxsim.rrr import N_MODES, RRR_ROBOT, ik, ik_one, mode_index, singularity_
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
 from lynxsim.rrr.path import actuated_path, platform_path
-from lynxsim.rrr.report import FIGURE20_POSES, REPORT_MODE, Figure20Pose
+from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, Figure20Pose
 from lynxsim.sim.contacts import ContactTracker
 from lynxsim.sim.report import ContactPair
-from lynxsim.sim.rrr_scene import (
+from lynxsim.sim.rrr.model import (
     HOME_MODE,
     HOME_POSE,
     RRRIds,

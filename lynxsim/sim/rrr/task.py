@@ -18,8 +18,8 @@ from lynxsim.rrr.path import (
 from lynxsim.sim.playback import Playback
 from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.rrr_playback import play_rrr, start_model
-from lynxsim.sim.rrr_scene import HOME_MODE, RRRIds
+from lynxsim.sim.rrr.playback import play_rrr, start_model
+from lynxsim.sim.rrr.model import HOME_MODE, RRRIds
 from lynxsim.tasks import PlanarPose, Task
 from lynxsim.traj.kinds import TrajectoryKind
 
@@ -103,7 +103,7 @@ def run_rrr_path(
 
     Returns:
         The :class:`~lynxsim.sim.playback.Playback` (report ``extra``: see
-        :data:`lynxsim.sim.rrr_playback.RRR_EXTRA_KEYS`).
+        :data:`lynxsim.sim.rrr.playback.RRR_EXTRA_KEYS`).
     """
     model, _ = start_model(path, mode)
     ids = RRRIds.from_model(model)

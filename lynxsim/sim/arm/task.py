@@ -7,11 +7,11 @@ from collections.abc import Callable
 
 import numpy as np
 
-from lynxsim.sim.arm_playback import play_arm
+from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.playback import Playback
 from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.scene import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_scene
+from lynxsim.sim.arm.model import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_scene
 from lynxsim.traj import Trajectory
 
 __all__ = ["GRIPPER_CLOSED_M", "GRIPPER_OPEN_M", "pick_and_place_gripper", "run_arm_trajectory"]

@@ -14,7 +14,7 @@ import mujoco
 
 from lynxsim.arm import FRAME_NAMES, LYNX_ARM
 from lynxsim.errors import InvalidInputError
-from lynxsim.reference import OBSTACLE
+from lynxsim.reproduce.arm_tables import OBSTACLE
 from lynxsim.resources import model_path
 
 __all__ = [

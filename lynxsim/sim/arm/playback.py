@@ -10,7 +10,7 @@ import numpy as np
 from lynxsim.arm import tool_pose
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.playback import Playback, StepHook, play
-from lynxsim.sim.scene import SceneIds
+from lynxsim.sim.arm.model import SceneIds
 from lynxsim.traj import Trajectory
 
 __all__ = ["arm_binding", "physics_grid", "play_arm"]

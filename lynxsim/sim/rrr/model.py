@@ -31,7 +31,7 @@ from lynxsim.rrr import RRR_ROBOT, ik_one, leg_points
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
 from lynxsim.rrr.path import wrap_to_window
-from lynxsim.rrr.report import REPORT_MODE
+from lynxsim.reproduce.rrr_formulas import REPORT_MODE
 from lynxsim.sim.binding import RobotBinding, name_to_id
 
 __all__ = [

@@ -1,0 +1,63 @@
+"""Angles shared by both robots: wrapping and the slack on joint-range tests.
+
+Pure NumPy and :mod:`math`; the arm (:mod:`lynxsim.arm`), the 3-RRR robot
+(:mod:`lynxsim.rrr`) and the trajectories (:mod:`lynxsim.traj`) read these and
+write neither again.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["LIMIT_TOL", "wrap_angle", "wrap_angle_float"]
+
+FloatArray = npt.NDArray[np.float64]
+
+_TAU = 2.0 * math.pi
+_INV_TAU = 1.0 / _TAU
+
+LIMIT_TOL = 1e-7
+"""Slack on joint ranges [rad] (and on the arm IK's reach test, on cos q3 [-]).
+
+At a stretched or folded elbow (sin q3 = 0) the arm's closed-form IK loses half
+the digits: a rounding of 1e-16 in cos q3 moves q3, and so q4, by ~1e-8 rad. The
+slack keeps such poses on the joint limits solvable; it is 6e-6 degrees. Every
+test of a joint against its range (IK, waypoints, trajectory checks) uses it, so
+that a pose the IK accepts is never refused further on.
+"""
+
+
+def wrap_angle(angle: npt.ArrayLike) -> FloatArray:
+    """Wrap angles into [-pi, pi] [rad].
+
+    ``angle - 2 pi rint(angle / (2 pi))``, exact for ``|angle| < 1e15``; an odd
+    multiple of pi may come out as pi or -pi.
+
+    Args:
+        angle: Angles, any shape [rad].
+
+    Returns:
+        A new array of the same shape (a NumPy scalar for a scalar) [rad].
+    """
+    a = np.asarray(angle, dtype=float)
+    out: FloatArray = np.multiply(a, _INV_TAU, out=np.empty_like(a))  # an array when 0-d too
+    np.rint(out, out=out)
+    out *= -_TAU
+    out += a
+    if out.ndim == 0:
+        scalar: FloatArray = out[()]
+        return scalar
+    return out
+
+
+def wrap_angle_float(angle: float) -> float:
+    """:func:`wrap_angle` of one finite Python float [rad], operation for operation.
+
+    The scalar twin for per-call code paths (~30 ns against NumPy's ~1 µs); the
+    result equals :func:`wrap_angle`'s bit for bit. ``angle`` must be finite
+    (the caller checks: this path skips the test).
+    """
+    return round(angle * _INV_TAU) * -_TAU + angle

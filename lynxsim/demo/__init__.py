@@ -1,0 +1,1 @@
+"""The main job (``lynxsim demo``): every task simulated, plotted and filmed."""
