@@ -23,13 +23,58 @@ unit; the loader validates it and converts to SI. Example::
     name = "home"
     q_deg = [0.0, 90.0, -90.0, 0.0, 0.0]
 
+    [[obstacles]]                    # any number (none: no obstacle); names unique
+    name = "cylinder"
+    shape = "cylinder"               # cylinder, box or sphere
+    position_mm = [150.0, 150.0, 0.0]  # cylinder, box: centre of the bottom face; sphere: centre
+    radius_mm = 40.0                 # cylinder, sphere
+    height_mm = 400.0                # cylinder
+
+    [[obstacles]]
+    name = "box"
+    shape = "box"
+    position_mm = [150.0, -150.0, 0.0]
+    size_mm = [100.0, 60.0, 350.0]   # full extents along the box's own x, y, z
+    yaw_deg = -45.0                  # about the vertical, optional (default 0)
+
+    [[obstacles]]
+    name = "ball"
+    shape = "sphere"
+    position_mm = [200.0, 60.0, 300.0]
+    radius_mm = 30.0
+
+    [cube]                           # optional, every key too: lynxsim.scene.REPORT_CUBE's
+    position_mm = [0.0, 300.0, 0.0]  # its centre at the start
+    size_mm = 25.0                   # edge length
+    yaw_deg = 0.0                    # about the vertical
+    mass_kg = 0.01
+    friction = 1.0                   # sliding friction
+
 Poses of the 3-RRR robot are platform poses: ``x_mm``, ``y_mm``, ``alpha_deg``.
+
+The scene (:class:`~lynxsim.scene.Scene`, ``Task.scene``) is in the arm's base
+frame, like the poses. The table top lies at ``TABLE.top_z`` = -12.5 mm, half a
+cube below the base plane, so a tool point at z = 0 is the centre of a resting
+cube. A cylinder or box whose bottom face lies between the table top and the
+base plane (-12.5 mm <= z <= 0) stands on the table: its bottom moves down to
+the table top, its top stays at z + height (the report's cylinder above spans
+-12.5 to 400 mm and equals :data:`~lynxsim.scene.REPORT_CYLINDER`). A bottom
+face higher than 0 is kept (a raised obstacle); one lower than the table top,
+a sphere or cube reaching below it, is refused. Sanity bounds: coordinates
+within +-10000 mm (10 m), sizes (radius, height, edge) 0.1 to 10000 mm, the
+cube's mass at most 100 kg and its friction at most 10. An obstacle may not
+enclose the robot's base (the origin) or the cube's start (its centre). Arm
+tasks without ``[cube]`` get the report's cube; 3-RRR tasks have neither
+obstacles nor cube (both keys are refused).
+
 Every problem is reported as a :class:`~lynxsim.errors.TaskFileError` naming
-the file and the field (``poses[2].pitch_deg``, pose indices from 0).
+the file and the field (``poses[2].pitch_deg``, ``obstacles[1].radius_mm``,
+indices from 0).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import tomllib
@@ -38,7 +83,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal, get_args
 
-from lynxsim.errors import TaskFileError
+from lynxsim.errors import InvalidInputError, TaskFileError
+from lynxsim.scene import REPORT_CUBE, TABLE, Box, Cube, Cylinder, Obstacle, Scene, Sphere
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.waypoints import ArmPose, JointPose
 
@@ -86,6 +132,8 @@ class Task:
         pass_through: Ruckig: pass intermediate poses without stopping.
         description: Free text.
         source: The file the task was read from, if any.
+        scene: Obstacles, table and cube (:class:`~lynxsim.scene.Scene`, SI units,
+            the arm's base frame; default: no obstacle, the report's cube).
     """
 
     name: str
@@ -97,12 +145,29 @@ class Task:
     pass_through: bool = False
     description: str = ""
     source: Path | None = None
+    scene: Scene = dataclasses.field(default_factory=Scene)
 
 
-_TOP_KEYS = ("name", "description", "robot", "trajectory", "poses")
+_TOP_KEYS = ("name", "description", "robot", "trajectory", "poses", "obstacles", "cube")
 _TRAJECTORY_KEYS = ("type", "segment_duration_s", "stretch", "pass_through")
 _ARM_POSE_KEYS = ("name", "position_mm", "pitch_deg", "roll_deg", "q_deg")
 _RRR_POSE_KEYS = ("name", "x_mm", "y_mm", "alpha_deg")
+_SHAPE_KEYS: dict[str, tuple[str, ...]] = {
+    "cylinder": ("name", "shape", "position_mm", "radius_mm", "height_mm"),
+    "box": ("name", "shape", "position_mm", "size_mm", "yaw_deg"),
+    "sphere": ("name", "shape", "position_mm", "radius_mm"),
+}
+_OBSTACLE_KEYS = tuple(dict.fromkeys(k for keys in _SHAPE_KEYS.values() for k in keys))
+_CUBE_KEYS = ("position_mm", "size_mm", "yaw_deg", "mass_kg", "friction")
+
+_LIMIT_MM = 10_000.0
+"""Bound on every scene coordinate and size [mm] (10 m)."""
+_MIN_SIZE_MM = 0.1
+"""Smallest scene size (radius, height, edge) [mm]."""
+_MAX_CUBE_MASS_KG = 100.0
+"""Heaviest cube a task may ask for [kg]."""
+_MAX_FRICTION = 10.0
+"""Largest sliding friction coefficient of the cube [-]."""
 
 
 class _Reader:
@@ -128,9 +193,13 @@ class _Reader:
     def number(self, value: object, field: str) -> float:
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.fail(field, f"must be a number, got {value!r}")
-        if not math.isfinite(value):
+        try:
+            number = float(value)
+        except OverflowError:  # an integer beyond the float range
+            raise self.fail(field, "must be finite, got an integer beyond 1e308") from None
+        if not math.isfinite(number):
             raise self.fail(field, f"must be finite, got {value!r}")
-        return float(value)
+        return number
 
     def positive(self, value: object, field: str) -> float:
         number = self.number(value, field)
@@ -142,6 +211,30 @@ class _Reader:
         if not isinstance(value, list) or len(value) != n:
             raise self.fail(field, f"must be a list of {n} numbers, got {value!r}")
         return tuple(self.number(v, f"{field}[{i}]") for i, v in enumerate(value))
+
+    def bounded(self, value: object, field: str, low: float, high: float, unit: str) -> float:
+        """A number in [low, high], ``unit`` naming its unit in the message."""
+        number = self.number(value, field)
+        if not low <= number <= high:
+            raise self.fail(field, f"must lie within {low:g}..{high:g} {unit}, got {value!r}")
+        return number
+
+    def size_mm(self, value: object, field: str, high: float = _LIMIT_MM) -> float:
+        """A positive size [mm], at least 0.1 mm and at most ``high``."""
+        number = self.positive(value, field)
+        if not _MIN_SIZE_MM <= number <= high:
+            raise self.fail(field, f"must lie within {_MIN_SIZE_MM:g}..{high:g} mm, got {value!r}")
+        return number
+
+    def position_mm(self, value: object, field: str) -> tuple[float, float, float]:
+        """A point (x, y, z) [mm], each coordinate within +-10000 mm (10 m)."""
+        if not isinstance(value, list) or len(value) != 3:
+            raise self.fail(field, f"must be a list of 3 numbers, got {value!r}")
+        x, y, z = (
+            self.bounded(v, f"{field}[{i}]", -_LIMIT_MM, _LIMIT_MM, "mm (+-10 m)")
+            for i, v in enumerate(value)
+        )
+        return x, y, z
 
     def string(self, value: object, field: str) -> str:
         if not isinstance(value, str):
@@ -185,6 +278,136 @@ def _rrr_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> Plan
         for key in ("x_mm", "y_mm", "alpha_deg")
     )
     return PlanarPose(x * _MM, y * _MM, math.radians(alpha), name)
+
+
+def _m(mm: float) -> float:
+    """Millimetres to metres, correctly rounded (150 mm is 0.15 m exactly as a float)."""
+    return mm / 1000.0
+
+
+def _standing(
+    r: _Reader, field: str, position_mm: tuple[float, float, float], height_mm: float
+) -> tuple[tuple[float, float, float], float]:
+    """Bottom-face centre [m] and height [m] of a cylinder or box, put on the table.
+
+    A bottom face between the table top and the base plane moves down to the
+    table top; the top stays where the file puts it.
+    """
+    x, y, z = (_m(v) for v in position_mm)
+    height = _m(height_mm)
+    if z < TABLE.top_z:
+        raise r.fail(
+            f"{field}.position_mm[2]",
+            f"the bottom face at z = {position_mm[2]:g} mm would sink into the table "
+            f"(its top is at z = {TABLE.top_z * 1e3:g} mm)",
+        )
+    if z <= 0.0 and z != TABLE.top_z:
+        height = (z + height) - TABLE.top_z
+        z = TABLE.top_z
+    return (x, y, z), height
+
+
+def _obstacle(r: _Reader, item: object, field: str) -> Obstacle:
+    raw = r.table(item, field, _OBSTACLE_KEYS)
+    shape = r.string(r.required(raw, "shape", f"{field}.shape"), f"{field}.shape")
+    if shape not in _SHAPE_KEYS:
+        raise r.fail(
+            f"{field}.shape", f"unknown shape {shape!r}; expected one of: {', '.join(_SHAPE_KEYS)}"
+        )
+    keys = _SHAPE_KEYS[shape]
+    foreign = [k for k in raw if k not in keys]
+    if foreign:
+        raise r.fail(
+            f"{field}.{foreign[0]}", f"not a key of a {shape}; a {shape} takes: {', '.join(keys)}"
+        )
+    name = r.string(r.required(raw, "name", f"{field}.name"), f"{field}.name")
+    if not name or not name.isprintable():
+        raise r.fail(f"{field}.name", f"must be a non-empty printable string, got {name!r}")
+    position_mm = r.position_mm(
+        r.required(raw, "position_mm", f"{field}.position_mm"), f"{field}.position_mm"
+    )
+
+    def size(key: str) -> float:
+        return r.size_mm(r.required(raw, key, f"{field}.{key}"), f"{field}.{key}")
+
+    try:
+        if shape == "cylinder":
+            radius, height_mm = size("radius_mm"), size("height_mm")
+            position, height = _standing(r, field, position_mm, height_mm)
+            return Cylinder(name, position, _m(radius), height)
+        if shape == "box":
+            raw_size = r.required(raw, "size_mm", f"{field}.size_mm")
+            if not isinstance(raw_size, list) or len(raw_size) != 3:
+                raise r.fail(f"{field}.size_mm", f"must be a list of 3 numbers, got {raw_size!r}")
+            sx, sy, sz = (r.size_mm(v, f"{field}.size_mm[{i}]") for i, v in enumerate(raw_size))
+            yaw = r.number(raw.get("yaw_deg", 0.0), f"{field}.yaw_deg")
+            position, height = _standing(r, field, position_mm, sz)
+            return Box(name, position, (_m(sx), _m(sy), height), math.radians(yaw))
+        radius = size("radius_mm")
+        x, y, z = (_m(v) for v in position_mm)
+        if z - _m(radius) < TABLE.top_z:
+            raise r.fail(
+                f"{field}.position_mm[2]",
+                f"a sphere of radius {radius:g} mm centred at z = {position_mm[2]:g} mm "
+                f"would reach into the table (its top is at z = {TABLE.top_z * 1e3:g} mm)",
+            )
+        return Sphere(name, (x, y, z), _m(radius))
+    except InvalidInputError as exc:  # a value the checks above let through
+        raise r.fail(field, str(exc)) from None
+
+
+def _cube(r: _Reader, item: object) -> Cube:
+    """The ``[cube]`` table; a key left out keeps the report's cube's value."""
+    raw = r.table(item, "cube", _CUBE_KEYS)
+    position = REPORT_CUBE.position
+    if "position_mm" in raw:
+        x, y, z = r.position_mm(raw["position_mm"], "cube.position_mm")
+        position = (_m(x), _m(y), _m(z))
+    size = REPORT_CUBE.size
+    if "size_mm" in raw:
+        size = _m(r.size_mm(raw["size_mm"], "cube.size_mm"))
+    yaw = REPORT_CUBE.yaw
+    if "yaw_deg" in raw:
+        yaw = math.radians(r.number(raw["yaw_deg"], "cube.yaw_deg"))
+    mass = r.positive(raw.get("mass_kg", REPORT_CUBE.mass), "cube.mass_kg")
+    if mass > _MAX_CUBE_MASS_KG:
+        raise r.fail("cube.mass_kg", f"must be at most {_MAX_CUBE_MASS_KG:g} kg, got {mass!r}")
+    friction = r.positive(raw.get("friction", REPORT_CUBE.friction), "cube.friction")
+    if friction > _MAX_FRICTION:
+        raise r.fail("cube.friction", f"must be at most {_MAX_FRICTION:g}, got {friction!r}")
+    if position[2] - size / 2 < TABLE.top_z:
+        raise r.fail(
+            "cube.position_mm[2]" if "position_mm" in raw else "cube.size_mm",
+            f"a {size * 1e3:g} mm cube centred at z = {position[2] * 1e3:g} mm would reach "
+            f"into the table (its top is at z = {TABLE.top_z * 1e3:g} mm)",
+        )
+    try:
+        return Cube(position, size, yaw, mass, friction)
+    except InvalidInputError as exc:  # a value the checks above let through
+        raise r.fail("cube", str(exc)) from None
+
+
+def _scene(r: _Reader, top: Mapping[str, Any]) -> Scene:
+    """The scene of an arm task: its obstacles and cube."""
+    cube = _cube(r, top["cube"]) if "cube" in top else REPORT_CUBE
+    raw = top.get("obstacles", [])
+    if not isinstance(raw, list):
+        raise r.fail("obstacles", "must be an array of [[obstacles]] tables")
+    obstacles: list[Obstacle] = []
+    for i, item in enumerate(raw):
+        field = f"obstacles[{i}]"
+        obstacle = _obstacle(r, item, field)
+        if any(o.name == obstacle.name for o in obstacles):
+            raise r.fail(f"{field}.name", f"duplicate obstacle name {obstacle.name!r}")
+        try:  # does it enclose the base or the cube's start?
+            Scene((obstacle,), TABLE, cube)
+        except InvalidInputError as exc:
+            raise r.fail(field, str(exc)) from None
+        obstacles.append(obstacle)
+    try:
+        return Scene(tuple(obstacles), TABLE, cube)
+    except InvalidInputError as exc:  # checked obstacle by obstacle above
+        raise r.fail("obstacles", str(exc)) from None
 
 
 def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
@@ -236,6 +459,14 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         else:
             durations = (r.positive(raw_d, field),) * n
 
+    if robot == "rrr":
+        for key in ("obstacles", "cube"):
+            if key in top:
+                raise r.fail(key, "the 3-RRR scene has no obstacles or cube yet; remove it")
+        scene = Scene(obstacles=(), cube=None)
+    else:
+        scene = _scene(r, top)
+
     return Task(
         name=name,
         robot=robot,
@@ -246,6 +477,7 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         pass_through=pass_through,
         description=description,
         source=Path(path),
+        scene=scene,
     )
 
 
@@ -280,5 +512,7 @@ def load_task(path: str | os.PathLike[str]) -> Task:
     except UnicodeDecodeError as exc:
         raise TaskFileError(str(path), None, f"not UTF-8 text ({exc.reason})") from None
     except tomllib.TOMLDecodeError as exc:
+        raise TaskFileError(str(path), None, f"not valid TOML: {exc}") from None
+    except (ValueError, RecursionError) as exc:  # an integer too long, arrays nested too deep
         raise TaskFileError(str(path), None, f"not valid TOML: {exc}") from None
     return _parse(data, str(path), path.stem)

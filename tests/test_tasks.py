@@ -3,13 +3,30 @@
 from __future__ import annotations
 
 import math
+import tempfile
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
+from lynxsim.arm.fk import FRAME_NAMES, frame_origins
 from lynxsim.errors import TaskFileError
-from lynxsim.tasks import PlanarPose, load_task
-from lynxsim.traj import ArmPose, JointPose, TrajectoryKind
+from lynxsim.scene import (
+    REPORT_CUBE,
+    REPORT_CYLINDER,
+    REPORT_SCENE,
+    TABLE,
+    Box,
+    Cube,
+    Cylinder,
+    Scene,
+    Sphere,
+)
+from lynxsim.tasks import PlanarPose, Task, load_task
+from lynxsim.traj import ArmPose, JointPose, TrajectoryKind, build_trajectory
 
 TASKS = Path(__file__).resolve().parents[1] / "tasks"
 
@@ -222,3 +239,596 @@ def test_non_utf8_file_is_refused(tmp_path):
     path.write_bytes('name = "é"\n'.encode("latin-1"))
     with pytest.raises(TaskFileError, match="not UTF-8 text"):
         load_task(path)
+
+
+# ---------------------------------------------------------------- scenes
+
+MM = 1e-3
+"""One millimetre [m]."""
+SCENE_TOL_M = 1e-15
+"""Agreement of a loaded scene value with its mm value in metres [m]."""
+HIT_TIME_STEP_S = 0.005
+"""Time step at which the three-obstacle task's path is checked [s]."""
+
+SCENE_TASK = (
+    ARM_TASK
+    + """
+[[obstacles]]
+name = "pillar"
+shape = "cylinder"
+position_mm = [150.0, 150.0, 0.0]
+radius_mm = 40.0
+height_mm = 400.0
+
+[[obstacles]]
+name = "crate"
+shape = "box"
+position_mm = [150.0, -150.0, 0.0]
+size_mm = [100.0, 60.0, 350.0]
+yaw_deg = -45.0
+
+[[obstacles]]
+name = "ball"
+shape = "sphere"
+position_mm = [200.0, 60.0, 300.0]
+radius_mm = 30.0
+
+[cube]
+position_mm = [0.0, 300.0, 0.0]
+size_mm = 25.0
+"""
+)
+
+
+def test_shipped_arm_tasks_list_the_reports_cylinder():
+    for name in ("pick_and_place", "obstacle_avoidance"):
+        task = load_task(TASKS / f"{name}.toml")
+        assert task.scene == REPORT_SCENE, name
+        assert task.scene.obstacles[0] == REPORT_CYLINDER  # exactly, -12.5 to 400 mm
+
+
+def test_shipped_rrr_tasks_have_an_empty_scene():
+    for name in ("rrr_closed_curve", "rrr_figure20_tour"):
+        assert load_task(TASKS / f"{name}.toml").scene == Scene((), cube=None)
+
+
+def test_three_obstacles_is_the_pick_and_place_among_three_shapes():
+    task = load_task(TASKS / "three_obstacles.toml")
+    report = load_task(TASKS / "pick_and_place.toml")
+    assert (task.name, task.robot, task.trajectory) == (
+        "three_obstacles",
+        "arm",
+        TrajectoryKind.QUINTIC,
+    )
+    assert (task.poses, task.durations, task.stretch) == (report.poses, (1.0,) * 4, True)
+    cylinder, box, sphere = task.scene.obstacles
+    assert cylinder == REPORT_CYLINDER
+    assert isinstance(box, Box)
+    assert box.name == "box"
+    assert isinstance(sphere, Sphere)
+    assert sphere.name == "sphere"
+    assert task.scene.cube == REPORT_CUBE
+    points = [(0.0, 0.0, 0.0), REPORT_CUBE.position]
+    points += [p.position for p in task.poses if isinstance(p, ArmPose)]
+    for obstacle in task.scene.obstacles:
+        assert not any(obstacle.contains(p) for p in points), obstacle.name
+
+
+def test_every_obstacle_of_three_obstacles_stands_in_the_quintic_path():
+    # The gripper (wrist point to tool point) passes through each obstacle; the
+    # MuJoCo collision check of the whole arm lives in tests/sim.
+    task = load_task(TASKS / "three_obstacles.toml")
+    trajectory = build_trajectory(task)
+    t = np.arange(0.0, trajectory.duration, HIT_TIME_STEP_S)
+    origins = frame_origins(trajectory.sample(t).q)
+    wrist, tool = origins[:, FRAME_NAMES.index("frame5")], origins[:, FRAME_NAMES.index("tool")]
+    gripper = [wrist + f * (tool - wrist) for f in np.linspace(0.0, 1.0, 11)]
+    for obstacle in task.scene.obstacles:
+        assert any(obstacle.contains(tuple(p)) for points in gripper for p in points), obstacle.name
+
+
+def test_task_without_obstacles_has_none_and_the_reports_cube(tmp_path):
+    task = load_task(_write(tmp_path, ARM_TASK))
+    assert task.scene == Scene((), TABLE, REPORT_CUBE)
+
+
+def test_task_built_in_code_defaults_to_an_empty_scene():
+    task = Task("t", "arm", (JointPose((0.0,) * 5), JointPose((0.1,) * 5)), TrajectoryKind.CUBIC)
+    assert task.scene == Scene()
+    assert task.scene.obstacles == ()
+
+
+def test_scene_is_read_in_si_and_stands_on_the_table(tmp_path):
+    scene = load_task(_write(tmp_path, SCENE_TASK)).scene
+    pillar, crate, ball = scene.obstacles
+    assert pillar == Cylinder("pillar", (0.15, 0.15, TABLE.top_z), 0.04, 0.4 - TABLE.top_z)
+    assert crate == Box(
+        "crate", (0.15, -0.15, TABLE.top_z), (0.1, 0.06, 0.35 - TABLE.top_z), math.radians(-45.0)
+    )
+    assert ball == Sphere("ball", (0.2, 0.06, 0.3), 0.03)
+    assert scene.cube == REPORT_CUBE
+    assert scene.table == TABLE
+
+
+@pytest.mark.parametrize("z_mm", [0.0, -0.0, -5.0, -12.5], ids=lambda z: f"z{z:g}")
+@pytest.mark.parametrize("shape", ["cylinder", "box"])
+def test_bottom_face_between_table_and_base_plane_moves_to_the_table(tmp_path, shape, z_mm):
+    sizes = (
+        "radius_mm = 40.0\nheight_mm = 100.0" if shape == "cylinder" else "size_mm = [1, 2, 100]"
+    )
+    text = ARM_TASK + (
+        f'\n[[obstacles]]\nname = "o"\nshape = "{shape}"\n'
+        f"position_mm = [150.0, 150.0, {z_mm}]\n{sizes}\n"
+    )
+    (obstacle,) = load_task(_write(tmp_path, text)).scene.obstacles
+    height = obstacle.height if isinstance(obstacle, Cylinder) else obstacle.size[2]
+    assert obstacle.position == (0.15, 0.15, TABLE.top_z)
+    assert obstacle.position[2] + height == pytest.approx((z_mm + 100.0) * MM, abs=SCENE_TOL_M)
+
+
+def test_raised_obstacles_are_kept_where_given(tmp_path):
+    text = SCENE_TASK.replace("[150.0, 150.0, 0.0]", "[150.0, 150.0, 20.0]", 1)
+    text = text.replace("[150.0, -150.0, 0.0]", "[150.0, -150.0, 0.001]", 1)
+    text = text.replace("[200.0, 60.0, 300.0]", "[200.0, 60.0, 17.5]", 1)  # resting on the table
+    pillar, crate, ball = load_task(_write(tmp_path, text)).scene.obstacles
+    assert (pillar.position, pillar.height) == ((0.15, 0.15, 0.02), 0.4)
+    assert (crate.position, crate.size[2]) == ((0.15, -0.15, 1e-6), 0.35)
+    assert ball.position == (0.2, 0.06, 0.0175)
+
+
+def test_cube_table_replaces_the_reports_cube_key_by_key(tmp_path):
+    text = SCENE_TASK.replace(
+        "size_mm = 25.0\n", "size_mm = 30.0\nyaw_deg = 90.0\nmass_kg = 0.02\nfriction = 0.5\n"
+    ).replace("[0.0, 300.0, 0.0]\nsize_mm", "[50.0, 250.0, 2.5]\nsize_mm")
+    cube = load_task(_write(tmp_path, text)).scene.cube
+    assert cube == Cube((0.05, 0.25, 0.0025), 0.03, math.radians(90.0), 0.02, 0.5)
+    text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\ncube = {size_mm = 20}\n')
+    cube = load_task(_write(tmp_path, text)).scene.cube
+    assert cube == Cube(REPORT_CUBE.position, 0.02)
+    text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\ncube = {}\n')
+    assert load_task(_write(tmp_path, text)).scene.cube == REPORT_CUBE
+
+
+_WITHIN = "must lie within 0.1..10000 mm"
+_CYLINDER_KEYS = "a cylinder takes: name, shape, position_mm, radius_mm, height_mm"
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "field", "problem"),
+    [
+        ("radius_mm = 40.0", 'radius_mm = "40"', "obstacles[0].radius_mm", "must be a number"),
+        ("radius_mm = 40.0", "radius_mm = true", "obstacles[0].radius_mm", "must be a number"),
+        ("radius_mm = 40.0", "radius_mm = 0.0", "obstacles[0].radius_mm", "must be positive"),
+        ("radius_mm = 40.0", "radius_mm = -1", "obstacles[0].radius_mm", "must be positive"),
+        ("radius_mm = 40.0", "radius_mm = nan", "obstacles[0].radius_mm", "must be finite"),
+        ("radius_mm = 40.0", "radius_mm = -inf", "obstacles[0].radius_mm", "must be finite"),
+        ("radius_mm = 40.0", "radius_mm = 1e999", "obstacles[0].radius_mm", "must be finite"),
+        (
+            "radius_mm = 40.0",
+            f"radius_mm = 1{'0' * 400}",
+            "obstacles[0].radius_mm",
+            "must be finite, got an integer beyond 1e308",
+        ),
+        ("radius_mm = 40.0", "radius_mm = 10000.5", "obstacles[0].radius_mm", _WITHIN),
+        ("radius_mm = 40.0", "radius_mm = 0.05", "obstacles[0].radius_mm", _WITHIN),
+        ("radius_mm = 40.0", "radius_mm = [40.0]", "obstacles[0].radius_mm", "must be a number"),
+        ("height_mm = 400.0\n", "", "obstacles[0].height_mm", "missing"),
+        ("radius_mm = 40.0\n", "", "obstacles[0].radius_mm", "missing"),
+        (
+            "radius_mm = 40.0",
+            'radius_mm = 40.0\ncolour = "red"',
+            "obstacles[0].colour",
+            "unknown key; expected one of: name, shape, position_mm, radius_mm, height_mm, "
+            "size_mm, yaw_deg",
+        ),
+        (
+            "height_mm = 400.0",
+            "height_mm = 400.0\nsize_mm = [1.0, 1.0, 1.0]",
+            "obstacles[0].size_mm",
+            f"not a key of a cylinder; {_CYLINDER_KEYS}",
+        ),
+        (
+            "height_mm = 400.0",
+            "height_mm = 400.0\nyaw_deg = 0.0",
+            "obstacles[0].yaw_deg",
+            "not a key of a cylinder",
+        ),
+        (
+            "radius_mm = 30.0",
+            "radius_mm = 30.0\nheight_mm = 10.0",
+            "obstacles[2].height_mm",
+            "not a key of a sphere; a sphere takes: name, shape, position_mm, radius_mm",
+        ),
+        (
+            "size_mm = [100.0, 60.0, 350.0]",
+            "size_mm = [100.0, 60.0, 350.0]\nradius_mm = 5.0",
+            "obstacles[1].radius_mm",
+            "not a key of a box; a box takes: name, shape, position_mm, size_mm, yaw_deg",
+        ),
+        (
+            'shape = "box"',
+            'shape = "cone"',
+            "obstacles[1].shape",
+            "unknown shape 'cone'; expected one of: cylinder, box, sphere",
+        ),
+        ('shape = "box"', 'shape = "Box"', "obstacles[1].shape", "unknown shape 'Box'"),
+        ('shape = "box"\n', "", "obstacles[1].shape", "missing"),
+        ('shape = "box"', "shape = 3", "obstacles[1].shape", "must be a string, got 3"),
+        ('name = "ball"', 'name = "pillar"', "obstacles[2].name", "duplicate obstacle name"),
+        ('name = "ball"', 'name = ""', "obstacles[2].name", "must be a non-empty printable"),
+        ('name = "ball"', 'name = "a\\tb"', "obstacles[2].name", "must be a non-empty printable"),
+        ('name = "ball"', "name = 7", "obstacles[2].name", "must be a string, got 7"),
+        ('name = "ball"\n', "", "obstacles[2].name", "missing"),
+        (
+            "position_mm = [150.0, 150.0, 0.0]",
+            "position_mm = [150.0, 150.0]",
+            "obstacles[0].position_mm",
+            "must be a list of 3 numbers",
+        ),
+        (
+            "position_mm = [150.0, 150.0, 0.0]",
+            'position_mm = "here"',
+            "obstacles[0].position_mm",
+            "must be a list of 3 numbers",
+        ),
+        (
+            "position_mm = [150.0, 150.0, 0.0]",
+            "position_mm = [150.0, true, 0.0]",
+            "obstacles[0].position_mm[1]",
+            "must be a number",
+        ),
+        (
+            "position_mm = [150.0, 150.0, 0.0]",
+            "position_mm = [150.0, 1e5, 0.0]",
+            "obstacles[0].position_mm[1]",
+            "must lie within -10000..10000 mm (+-10 m), got 100000.0",
+        ),
+        (
+            "position_mm = [150.0, 150.0, 0.0]",
+            "position_mm = [150.0, 150.0, -12.6]",
+            "obstacles[0].position_mm[2]",
+            "the bottom face at z = -12.6 mm would sink into the table (its top is at "
+            "z = -12.5 mm)",
+        ),
+        ("position_mm = [150.0, 150.0, 0.0]\n", "", "obstacles[0].position_mm", "missing"),
+        (
+            "position_mm = [150.0, -150.0, 0.0]",
+            "position_mm = [150.0, -150.0, -100.0]",
+            "obstacles[1].position_mm[2]",
+            "would sink into the table",
+        ),
+        (
+            "position_mm = [200.0, 60.0, 300.0]",
+            "position_mm = [200.0, 60.0, 17.4]",
+            "obstacles[2].position_mm[2]",
+            "a sphere of radius 30 mm centred at z = 17.4 mm would reach into the table",
+        ),
+        (
+            "size_mm = [100.0, 60.0, 350.0]",
+            "size_mm = [100.0, 60.0]",
+            "obstacles[1].size_mm",
+            "must be a list of 3 numbers",
+        ),
+        (
+            "size_mm = [100.0, 60.0, 350.0]",
+            "size_mm = [100.0, 0.0, 350.0]",
+            "obstacles[1].size_mm[1]",
+            "must be positive",
+        ),
+        (
+            "size_mm = [100.0, 60.0, 350.0]",
+            "size_mm = [100.0, 60.0, 1e6]",
+            "obstacles[1].size_mm[2]",
+            "must lie within 0.1..10000 mm, got 1000000.0",
+        ),
+        ("yaw_deg = -45.0", "yaw_deg = nan", "obstacles[1].yaw_deg", "must be finite"),
+        ("yaw_deg = -45.0", 'yaw_deg = "north"', "obstacles[1].yaw_deg", "must be a number"),
+        ("size_mm = 25.0", "size_mm = -1.0", "cube.size_mm", "must be positive"),
+        ("size_mm = 25.0", "size_mm = 2e4", "cube.size_mm", _WITHIN),
+        (
+            "size_mm = 25.0",
+            "size_mm = 40.0",
+            "cube.position_mm[2]",
+            "a 40 mm cube centred at z = 0 mm would reach into the table",
+        ),
+        (
+            "[cube]\nposition_mm = [0.0, 300.0, 0.0]",
+            "[cube]\nposition_mm = [0.0, 300.0, -1.0]",
+            "cube.position_mm[2]",
+            "would reach into the table",
+        ),
+        (
+            "[cube]\nposition_mm = [0.0, 300.0, 0.0]",
+            "[cube]\nposition_mm = [0.0, -2e4, 0.0]",
+            "cube.position_mm[1]",
+            "must lie within -10000..10000 mm (+-10 m)",
+        ),
+        ("size_mm = 25.0", "size_mm = 25.0\nyaw_deg = inf", "cube.yaw_deg", "must be finite"),
+        ("size_mm = 25.0", "size_mm = 25.0\nmass_kg = 0", "cube.mass_kg", "must be positive"),
+        (
+            "size_mm = 25.0",
+            "size_mm = 25.0\nmass_kg = 1000.0",
+            "cube.mass_kg",
+            "must be at most 100 kg",
+        ),
+        ("size_mm = 25.0", "size_mm = 25.0\nfriction = -1", "cube.friction", "must be positive"),
+        ("size_mm = 25.0", "size_mm = 25.0\nfriction = 11", "cube.friction", "at most 10"),
+        (
+            "size_mm = 25.0",
+            "size_mm = 25.0\nedge_mm = 1",
+            "cube.edge_mm",
+            "unknown key; expected one of: position_mm, size_mm, yaw_deg, mass_kg, friction",
+        ),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "." in v and " " not in v else None,
+)
+def test_malformed_scene_field_is_named_in_one_line(tmp_path, old, new, field, problem):
+    assert old in SCENE_TASK
+    path = _write(tmp_path, SCENE_TASK.replace(old, new, 1))
+    with pytest.raises(TaskFileError) as info:
+        load_task(path)
+    message = str(info.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}: {field}: ")
+    assert problem in message
+    assert (info.value.path, info.value.field) == (str(path), field)
+
+
+@pytest.mark.parametrize(
+    ("top", "field", "problem"),
+    [
+        ("obstacles = 3", "obstacles", "must be an array of [[obstacles]] tables"),
+        ('obstacles = {name = "o"}', "obstacles", "must be an array of [[obstacles]] tables"),
+        ("obstacles = [1, 2]", "obstacles[0]", "must be a table, got int"),
+        ("obstacles = [[]]", "obstacles[0]", "must be a table, got list"),
+        ("cube = 3", "cube", "must be a table, got int"),
+        ("cube = false", "cube", "must be a table, got bool"),
+    ],
+    ids=["number", "table", "numbers", "arrays", "cube_number", "cube_false"],
+)
+def test_scene_keys_of_the_wrong_kind_are_refused(tmp_path, top, field, problem):
+    path = _write(tmp_path, ARM_TASK.replace('robot = "arm"\n', f'robot = "arm"\n{top}\n'))
+    with pytest.raises(TaskFileError) as info:
+        load_task(path)
+    assert str(info.value) == f"{path}: {field}: {problem}"
+
+
+def test_empty_obstacle_array_means_no_obstacle(tmp_path):
+    text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\nobstacles = []\n')
+    assert load_task(_write(tmp_path, text)).scene.obstacles == ()
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "field", "problem"),
+    [
+        (
+            "position_mm = [200.0, 60.0, 300.0]\nradius_mm = 30.0",
+            "position_mm = [0.0, 0.0, 40.0]\nradius_mm = 50.0",
+            "obstacles[2]",
+            "obstacle 'ball' encloses the robot's base",
+        ),
+        (
+            "position_mm = [150.0, -150.0, 0.0]",
+            "position_mm = [0.0, 300.0, 0.0]",
+            "obstacles[1]",
+            "obstacle 'crate' encloses the cube's start",
+        ),
+        (
+            "position_mm = [150.0, 150.0, 0.0]\nradius_mm = 40.0",
+            "position_mm = [0.0, 290.0, -10.0]\nradius_mm = 20.0",
+            "obstacles[0]",
+            "obstacle 'pillar' encloses the cube's start",
+        ),
+    ],
+    ids=["base", "cube_in_box", "cube_in_cylinder"],
+)
+def test_obstacle_enclosing_the_base_or_the_cube_is_refused(tmp_path, old, new, field, problem):
+    assert old in SCENE_TASK
+    path = _write(tmp_path, SCENE_TASK.replace(old, new, 1))
+    with pytest.raises(TaskFileError) as info:
+        load_task(path)
+    assert str(info.value) == f"{path}: {field}: {problem}"
+
+
+def test_obstacle_over_a_moved_cube_start_is_fine(tmp_path):
+    text = SCENE_TASK.replace("[150.0, -150.0, 0.0]", "[0.0, 300.0, 0.0]", 1)
+    text = text.replace(
+        "[cube]\nposition_mm = [0.0, 300.0, 0.0]", "[cube]\nposition_mm = [0, 250, 0]"
+    )
+    scene = load_task(_write(tmp_path, text)).scene
+    assert scene.obstacle("crate").position[:2] == (0.0, 0.3)
+    assert scene.cube is not None
+    assert scene.cube.position == (0.0, 0.25, 0.0)
+
+
+@pytest.mark.parametrize(
+    "extra",
+    [
+        '[[obstacles]]\nname = "c"\nshape = "sphere"\nposition_mm = [0, 0, 100]\nradius_mm = 5',
+        "[cube]\nsize_mm = 25.0",
+    ],
+    ids=["obstacles", "cube"],
+)
+def test_rrr_tasks_refuse_a_scene(tmp_path, extra):
+    key = extra.strip("[]").split("]")[0].strip("[")
+    path = _write(tmp_path, f"{RRR_TASK}\n{extra}\n")
+    with pytest.raises(TaskFileError) as info:
+        load_task(path)
+    assert str(info.value) == (
+        f"{path}: {key}: the 3-RRR scene has no obstacles or cube yet; remove it"
+    )
+
+
+def test_rrr_task_scene_has_no_obstacle_and_no_cube(tmp_path):
+    assert load_task(_write(tmp_path, RRR_TASK)).scene == Scene((), cube=None)
+
+
+@pytest.mark.parametrize(
+    "text",
+    [f"robot = {'9' * 5000}\n", f"robot = {'[' * 5000}{']' * 5000}\n"],
+    ids=["integer_of_5000_digits", "arrays_nested_5000_deep"],
+)
+def test_toml_the_parser_cannot_hold_is_a_task_file_error(tmp_path, text):
+    path = _write(tmp_path, text)
+    with pytest.raises(TaskFileError, match=rf"^{path}: not valid TOML: "):
+        load_task(path)
+
+
+# ------------------------------------------ property test: mutated scenes
+
+_VALID_OBSTACLES: tuple[dict[str, Any], ...] = (
+    {
+        "name": "cylinder",
+        "shape": "cylinder",
+        "position_mm": [150.0, 150.0, 0.0],
+        "radius_mm": 40.0,
+        "height_mm": 400.0,
+    },
+    {
+        "name": "box",
+        "shape": "box",
+        "position_mm": [150.0, -150.0, 0.0],
+        "size_mm": [100.0, 60.0, 350.0],
+        "yaw_deg": -45.0,
+    },
+    {"name": "sphere", "shape": "sphere", "position_mm": [200.0, 60.0, 300.0], "radius_mm": 30.0},
+)
+_VALID_CUBE: dict[str, Any] = {
+    "position_mm": [0.0, 300.0, 0.0],
+    "size_mm": 25.0,
+    "yaw_deg": 0.0,
+    "mass_kg": 0.01,
+    "friction": 1.0,
+}
+_KEYS = (
+    "name",
+    "shape",
+    "position_mm",
+    "radius_mm",
+    "height_mm",
+    "size_mm",
+    "yaw_deg",
+    "mass_kg",
+    "friction",
+    "colour",
+    "",
+)
+_DELETE = object()
+"""A mutation that removes the key."""
+
+_numbers = st.one_of(
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.floats(-500.0, 500.0),
+    st.sampled_from([0.0, -0.0, -1.0, -12.5, 1e-300, 5e-324, 1e308, -1e308, 10_000.0, 10_000.5]),
+    st.integers(-(10**400), 10**400),
+    st.integers(-20_000, 20_000),
+)
+_scalars = st.one_of(
+    _numbers,
+    st.booleans(),
+    st.text(st.characters(exclude_categories=("Cs",)), max_size=5),
+    st.sampled_from(["cylinder", "box", "sphere", "cone", "", "\x01"]),
+)
+_values = st.recursive(
+    _scalars,
+    lambda inner: st.one_of(
+        st.lists(inner, max_size=4),
+        st.dictionaries(st.sampled_from(_KEYS), inner, max_size=3),
+    ),
+    max_leaves=6,
+)
+
+
+def _toml(value: Any) -> str:
+    """``value`` as a TOML value (inline tables and arrays)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return _toml_string(value)
+    if isinstance(value, list):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    return "{" + ", ".join(f"{_toml_string(k)} = {_toml(v)}" for k, v in value.items()) + "}"
+
+
+def _toml_string(text: str) -> str:
+    """``text`` as a TOML basic string, control characters escaped."""
+    escaped = "".join(
+        f"\\u{ord(c):04x}" if ord(c) < 0x20 or ord(c) == 0x7F or c in '"\\' else c for c in text
+    )
+    return f'"{escaped}"'
+
+
+@st.composite
+def _mutated_scenes(draw: st.DrawFn) -> dict[str, Any]:
+    valid = draw(st.lists(st.sampled_from(_VALID_OBSTACLES), max_size=4))
+    obstacles: Any = [{**o, "name": f"{o['name']}{i}"} for i, o in enumerate(valid)]
+    cube: Any = dict(_VALID_CUBE) if draw(st.booleans()) else _DELETE
+    for _ in range(draw(st.integers(0, 4))):
+        target = draw(st.sampled_from(["obstacle"] * 3 + ["coordinate"] * 2 + ["cube", "whole"]))
+        value = draw(st.one_of(st.just(_DELETE), _numbers, _values))
+        if target == "whole":
+            if draw(st.booleans()):
+                obstacles = value
+            else:
+                cube = value
+        elif target == "cube" and isinstance(cube, dict):
+            key = draw(st.sampled_from((*sorted(cube) * 3, *_KEYS)))  # mostly its own keys
+            cube.pop(key, None) if value is _DELETE else cube.__setitem__(key, value)
+        elif isinstance(obstacles, list) and obstacles:
+            item = obstacles[draw(st.integers(0, len(obstacles) - 1))]
+            if not isinstance(item, dict):
+                continue
+            key = draw(st.sampled_from((*sorted(item) * 3, *_KEYS)))
+            if target == "coordinate" and isinstance(item.get(key), list) and item[key]:
+                item[key] = list(item[key])
+                index = draw(st.integers(0, len(item[key]) - 1))
+                item[key][index] = 0.0 if value is _DELETE else value
+            elif value is _DELETE:
+                item.pop(key, None)
+            else:
+                item[key] = value
+    scene: dict[str, Any] = {}
+    if obstacles is not _DELETE:
+        scene["obstacles"] = obstacles
+    if cube is not _DELETE:
+        scene["cube"] = cube
+    return scene
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(scene=_mutated_scenes(), robot=st.sampled_from(["arm", "arm", "arm", "rrr"]))
+def test_mutated_scene_loads_or_raises_a_task_file_error(scene, robot):
+    top = "".join(f"{key} = {_toml(value)}\n" for key, value in scene.items())
+    body = ARM_TASK if robot == "arm" else RRR_TASK.replace('name = "platform"\n', "")
+    text = body.replace(f'robot = "{robot}"\n', f'robot = "{robot}"\n{top}', 1)
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "task.toml"
+        path.write_text(text, encoding="utf-8")
+        try:
+            task = load_task(path)
+        except TaskFileError as exc:  # any other exception fails the test
+            error: TaskFileError | None = exc
+        else:
+            error = None
+    if error is not None:
+        assert "\n" not in str(error)
+        assert error.path == str(path)
+        assert error.field is None or error.field.startswith(("obstacles", "cube")), error
+        return
+    # Loaded: a valid scene within the documented bounds.
+    assert isinstance(task.scene, Scene)
+    for obstacle in task.scene.obstacles:
+        assert all(abs(v) <= 10.0 for v in obstacle.position)
+        bottom = obstacle.position[2] - (obstacle.radius if isinstance(obstacle, Sphere) else 0.0)
+        assert bottom >= TABLE.top_z
+        assert not obstacle.contains((0.0, 0.0, 0.0))
+    if robot == "rrr":
+        assert task.scene == Scene((), cube=None)
