@@ -21,8 +21,8 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 import mujoco
 import numpy as np
 
-from lynxsim.sim import load_arm_scene
-from lynxsim.sim.arm_playback import play_arm
+from lynxsim.sim.arm.model import load_arm_scene
+from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.render import Quality, RenderSettings, SceneRenderer
 from lynxsim.sim.video import mp4_writer
 from lynxsim.tasks import load_task

@@ -6,7 +6,7 @@ Three figures from one run, each the median of ``--repeat`` measurements:
   ``mujoco.mj_step`` in a loop;
 * **raw mj_step in motion**: the same loop while the actuated joints follow the
   closed-curve task (``tasks/rrr_closed_curve.toml``), commands precomputed;
-* **playback**: :func:`lynxsim.sim.rrr_playback.play_rrr` of that task without
+* **playback**: :func:`lynxsim.sim.rrr.playback.play_rrr` of that task without
   video, i.e. with the per-step bookkeeping of a run report (contacts, loop
   closure, pose error, link clearance every 5 steps).
 
@@ -28,10 +28,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from lynxsim.sim.arm_playback import physics_grid
-from lynxsim.sim.rrr_playback import play_rrr, start_model
-from lynxsim.sim.rrr_scene import RRRIds, load_rrr_scene
-from lynxsim.sim.rrr_task import path_from_task
+from lynxsim.sim.arm.playback import physics_grid
+from lynxsim.sim.rrr.model import RRRIds, load_rrr_scene
+from lynxsim.sim.rrr.playback import play_rrr, start_model
+from lynxsim.sim.rrr.task import path_from_task
 from lynxsim.tasks import load_task
 
 TASK = Path(__file__).resolve().parents[1] / "tasks" / "rrr_closed_curve.toml"

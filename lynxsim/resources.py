@@ -1,4 +1,8 @@
-"""Finding the MJCF models that ship with lynxsim."""
+"""Finding the MJCF models that ship with lynxsim.
+
+The models live in the package (``lynxsim/models/``, package data of
+:mod:`lynxsim.models`), so editable and regular installs find them alike.
+"""
 
 from __future__ import annotations
 
@@ -11,6 +15,7 @@ __all__ = ["available_models", "model_path"]
 
 
 def _models_root() -> Path:
+    """The folder of the shipped models (``lynxsim/models/`` of the installed package)."""
     return Path(str(importlib.resources.files("lynxsim.models")))
 
 

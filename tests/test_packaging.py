@@ -15,19 +15,33 @@ from lynxsim.resources import available_models, model_path
 ROOT = Path(__file__).resolve().parents[1]
 
 
+SETUPTOOLS = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]
+MODELS_DIR = ROOT / "lynxsim" / "models"
+
+
 def test_every_subpackage_is_listed_in_pyproject():
-    listed = set(
-        tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["packages"]
-    )
     found = {
         ".".join(p.relative_to(ROOT).parent.parts) for p in (ROOT / "lynxsim").rglob("__init__.py")
-    } | {"lynxsim.models"}
-    assert found == listed
+    }
+    assert found == set(SETUPTOOLS["packages"])
+    assert "package-dir" not in SETUPTOOLS  # every package lives in its own folder
 
 
-def test_models_resolve_by_name():
-    for name in available_models():
+def test_every_model_file_is_package_data():
+    patterns = SETUPTOOLS["package-data"]["lynxsim.models"]
+    shipped = {p for pattern in patterns for p in MODELS_DIR.glob(pattern)}
+    files = {p for p in MODELS_DIR.rglob("*") if p.is_file() and p.suffix not in {".py", ".pyc"}}
+    assert files
+    left_out = sorted(str(p.relative_to(MODELS_DIR)) for p in files - shipped)
+    assert not left_out, f"not shipped by package-data {patterns}: {left_out}"
+
+
+def test_models_resolve_by_name_inside_the_package():
+    names = available_models()
+    assert {"lynx_arm/scene.xml", "rrr/scene.xml"} <= set(names)
+    for name in names:
         assert model_path(name).is_file()
+        assert model_path(name).is_relative_to(Path(lynxsim.__file__).parent / "models")
     with pytest.raises(InvalidInputError, match=r"no model named 'nope\.xml'; available:"):
         model_path("nope.xml")
 

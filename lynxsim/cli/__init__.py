@@ -11,22 +11,45 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
-from typing import NoReturn
+from typing import Any, NoReturn
 
 from lynxsim.cli import arm, demo, env, play, rrr, traj
 from lynxsim.errors import LynxsimError
 
-__all__ = ["main"]
+__all__ = ["build_parser", "main"]
 
 EXIT_USAGE = 2
 EXIT_ERROR = 1
 
 
+def _is_float_literal(text: str) -> bool:
+    """Whether ``float()`` reads ``text`` (``-9e1``, ``-.5``, ``-1.5E+2``, ``-inf``, ``nan``)."""
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
 class _OneLineParser(argparse.ArgumentParser):
-    """Argument parser whose errors are one line, not usage plus message."""
+    """Argument parser whose errors are one line, not usage plus message.
+
+    Any negative float literal is read as a value, never as an option: plain
+    argparse takes ``-90`` and ``-.5`` for numbers but ``-9e1`` or ``-inf`` for
+    unknown options. Sub-parsers are of this class too (``parser_class``).
+    """
 
     def error(self, message: str) -> NoReturn:
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
+
+    def _parse_optional(self, arg_string: str) -> Any:
+        if (
+            arg_string.startswith("-")
+            and arg_string not in self._option_string_actions
+            and _is_float_literal(arg_string)
+        ):
+            return None  # a positional value
+        return super()._parse_optional(arg_string)
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -36,7 +59,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Simulate the report's Lynxmotion arm and 3-RRR robot. "
         "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
     )
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_OneLineParser)
+    sub = parser.add_subparsers(required=True, parser_class=_OneLineParser)
     for module in (arm, traj, play, rrr, demo, env):
         module.register(sub)
     return parser

@@ -8,11 +8,12 @@ from __future__ import annotations
 import argparse
 import json
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
-from lynxsim.cli.units import Units, add_unit_flags, check_finite, json_list
+from lynxsim.cli.units import Units, add_unit_flags, finite_float, json_list
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["register"]
@@ -20,11 +21,10 @@ __all__ = ["register"]
 
 def _fk(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    check_finite(args.q, "joint angles")
-    q = np.array([u.angle_in(v) for v in args.q])
+    q = np.array([u.angle_in(getattr(args, f"q{j}")) for j in range(1, 6)])
     pose = tool_pose(q)
     origins = frame_origins(q)
-    out = {
+    out: dict[str, Any] = {
         "units": {"length": u.length, "angle": u.angle},
         "q": json_list(u.angle_out(q)),
         "tool_position": json_list(u.length_out(pose.position)),
@@ -52,7 +52,6 @@ def _fk(args: argparse.Namespace) -> int:
 def _ik(args: argparse.Namespace) -> int:
     u = Units(args.si)
     values = [args.x, args.y, args.z, args.pitch] + ([args.roll] if args.roll is not None else [])
-    check_finite(values, "target")
     p = np.array([u.length_in(v) for v in (args.x, args.y, args.z)])
     roll = None if args.roll is None else u.angle_in(args.roll)
     result = ik(p, u.angle_in(args.pitch), roll)
@@ -111,7 +110,8 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         description="Forward kinematics. Angles in degrees, output in mm "
         "and degrees, unless --si (rad in, m and rad out).",
     )
-    p.add_argument("q", type=float, nargs=5, metavar=("Q1", "Q2", "Q3", "Q4", "Q5"))
+    for j in range(1, 6):
+        p.add_argument(f"q{j}", type=finite_float, metavar=f"Q{j}", help=f"joint {j} angle")
     add_unit_flags(p)
     p.set_defaults(handler=_fk)
 
@@ -122,8 +122,8 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "[deg] and optional roll q5 [deg]; --si for m and rad.",
     )
     for name in ("x", "y", "z", "pitch"):
-        p.add_argument(name, type=float, metavar=name.upper())
-    p.add_argument("roll", type=float, nargs="?", default=None, metavar="ROLL")
+        p.add_argument(name, type=finite_float, metavar=name.upper())
+    p.add_argument("roll", type=finite_float, nargs="?", default=None, metavar="ROLL")
     add_unit_flags(p)
     p.set_defaults(handler=_ik)
 
@@ -132,7 +132,9 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         help="plot the reachable workspace (PNG)",
         description="Sample the joint ranges uniformly and plot the tool points.",
     )
-    p.add_argument("--out", type=Path, default=Path("workspace.png"), help="PNG file to write")
+    p.add_argument(
+        "--out", type=Path, default=Path("workspace.png"), metavar="FILE", help="PNG file to write"
+    )
     p.add_argument("--samples", type=int, default=1_000_000, help="joint samples (default 10^6)")
     p.add_argument("--seed", type=int, default=0, help="random seed")
     p.add_argument("--quiet", action="store_true", help="no progress bar")

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from lynxsim.arm import frame_origins, ik, tool_pose
-from lynxsim.reference import FK_CASES, TABLE4
+from lynxsim.reproduce.arm_tables import FK_CASES, TABLE4
 
 __all__ = ["register"]
 
@@ -51,8 +51,8 @@ def _simulations(args: argparse.Namespace) -> None:
     from tqdm import tqdm
 
     from lynxsim.cli.play import SUMMARY_HEADER, summary_row
-    from lynxsim.demo import arm_runs, run_arm_demo
-    from lynxsim.demo_rrr import FIGURE20_FILE, run_rrr_demo
+    from lynxsim.demo.arm import arm_runs, run_arm_demo
+    from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
     from lynxsim.sim.render import Quality, RenderSettings
     from lynxsim.tasks import find_tasks
 
@@ -60,7 +60,7 @@ def _simulations(args: argparse.Namespace) -> None:
     n_rrr = len(find_tasks(args.tasks, "rrr"))
     total = len(runs) + n_rrr
     render = RenderSettings(quality=Quality(args.quality))
-    print(f"\nSimulating {len(runs)} arm runs and {n_rrr} 3-RRR runs into {args.out}/")
+    print(f"\nSimulating {len(runs)} arm runs and {n_rrr} 3-RRR runs into {args.out_dir}/")
     with tqdm(total=total, unit="run", disable=args.quiet, file=sys.stderr) as bar:
 
         def progress(offset: int) -> Callable[[int, float], None]:
@@ -70,21 +70,21 @@ def _simulations(args: argparse.Namespace) -> None:
 
             return update
 
-        reports = run_arm_demo(runs, args.out, render, progress(0))
-        reports += run_rrr_demo(args.out, render, progress(len(runs)), tasks=args.tasks)
+        reports = run_arm_demo(runs, args.out_dir, render, progress(0))
+        reports += run_rrr_demo(args.out_dir, render, progress(len(runs)), tasks=args.tasks)
     print(SUMMARY_HEADER)
     for report in reports:
         print(summary_row(report))
-    print(f"\n3-RRR Figure 20 poses judged by simulation: {args.out / FIGURE20_FILE}")
-    print((args.out / FIGURE20_FILE).read_text().rstrip())
+    print(f"\n3-RRR Figure 20 poses judged by simulation: {args.out_dir / FIGURE20_FILE}")
+    print((args.out_dir / FIGURE20_FILE).read_text().rstrip())
     _expert_episode(args)
-    print(f"\nVideos and JSON reports in {args.out}/, plots in {args.out / 'plots'}/")
+    print(f"\nVideos and JSON reports in {args.out_dir}/, plots in {args.out_dir / 'plots'}/")
 
 
 def _expert_episode(args: argparse.Namespace) -> None:
     from lynxsim.envs.evaluation import record_expert_episode
 
-    dest = args.out / "LynxPickAndPlace-v0_expert.mp4"
+    dest = args.out_dir / "LynxPickAndPlace-v0_expert.mp4"
     stats = record_expert_episode(dest, seed=0, quality=args.quality)
     first = "-" if stats.first_success_step is None else str(stats.first_success_step)
     print(
@@ -109,7 +109,13 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "of the tasks folder with every trajectory type: MP4s, run reports, plots, a summary.",
     )
     p.add_argument("--tasks", type=Path, default=Path("tasks"), help="folder of task files")
-    p.add_argument("--out", type=Path, default=Path("videos"), help="output folder")
+    p.add_argument(
+        "--out-dir",
+        type=Path,
+        default=Path("videos"),
+        metavar="DIR",
+        help="output folder (default videos/)",
+    )
     p.add_argument("--quality", choices=("fast", "default"), default="default")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_demo)

@@ -19,7 +19,7 @@ def _run(args: argparse.Namespace) -> int:
 
     if args.episodes <= 0:
         raise InvalidInputError(f"--episodes must be positive, got {args.episodes}")
-    env_kwargs = {"obstacle": None} if args.no_obstacle else {}
+    env_kwargs = {"obstacles": ()} if args.no_obstacle else {}
     done = successes = 0
     with tqdm(total=args.episodes, unit="ep", disable=args.quiet, file=sys.stderr) as bar:
 

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from lynxsim.errors import InvalidInputError
 from lynxsim.sim.report import RunReport
 
 if TYPE_CHECKING:
@@ -48,19 +49,21 @@ def format_report(report: RunReport) -> str:
     ]
     verdict = report.obstacle
     if verdict is None:
-        lines.append("obstacle: none in the scene")
+        lines.append("obstacles: none in the scene")
     elif verdict.collided and verdict.first_pair is not None:
         lines.append(
-            f"obstacle: COLLISION at {verdict.first_time_s:.3f} s ({verdict.first_pair[0]} with "
+            f"obstacles: COLLISION with {verdict.first_obstacle} first, at "
+            f"{verdict.first_time_s:.3f} s ({verdict.first_pair[0]} with "
             f"{verdict.first_pair[1]}), deepest {verdict.max_penetration_m * 1e3:.1f} mm, "
             f"{verdict.steps_in_contact} steps in contact"
         )
     else:
-        lines.append("obstacle: clear")
-    if report.min_clearance_m is not None:
+        lines.append("obstacles: clear")
+    for o in report.obstacles:
+        hit = "hit" if o.first_contact_s is None else f"hit at {o.first_contact_s:.3f} s"
         lines.append(
-            f"minimum clearance to the obstacle: {report.min_clearance_m * 1e3:.1f} mm "
-            f"at {report.min_clearance_time_s:.3f} s"
+            f"  {o.name}: {hit if o.collided else 'clear'}, minimum clearance "
+            f"{o.min_clearance_m * 1e3:.1f} mm at {o.min_clearance_time_s:.3f} s"
         )
     for label, pairs in (
         ("self-collisions", report.self_collisions),
@@ -68,7 +71,8 @@ def format_report(report: RunReport) -> str:
     ):
         names = ", ".join(f"{p.geom1}/{p.geom2}" for p in pairs) or "none"
         lines.append(f"{label}: {names}")
-    lines.extend(_format_extra(report.extra))
+    if report.metrics is not None:
+        lines.extend(report.metrics.lines())
     health = "healthy" if report.healthy else "NOT healthy"
     if report.diverged_at_s is not None:
         health += f": diverged at {report.diverged_at_s:.3f} s"
@@ -76,23 +80,6 @@ def format_report(report: RunReport) -> str:
         health += f", MuJoCo warnings {report.warnings}"
     lines.append(f"simulation: {health}")
     return "\n".join(lines)
-
-
-def _format_extra(extra: dict[str, float]) -> list[str]:
-    """Robot-specific figures, one per line, in mm and degrees where the name says m or rad."""
-    lines = []
-    for key, value in extra.items():
-        for suffix, unit, scale in (
-            ("_rad_s", "deg/s", float(np.degrees(1.0))),
-            ("_rad", "deg", float(np.degrees(1.0))),
-            ("_m", "mm", 1e3),
-        ):
-            if key.endswith(suffix):
-                lines.append(f"{key.removesuffix(suffix)}: {value * scale:.4g} {unit}")
-                break
-        else:
-            lines.append(f"{key}: {value:g}")
-    return lines
 
 
 def progress_bar(label: str, disable: bool) -> tuple[Callable[[float], None], Callable[[], None]]:
@@ -107,67 +94,77 @@ def progress_bar(label: str, disable: bool) -> tuple[Callable[[float], None], Ca
     return update, bar.close
 
 
+_RUN_OPTIONS = ("mode", "no_obstacle")
+"""Flags of ``play`` that are options of one robot's runs (``SimAdapter.options``)."""
+
+
+def _check_flags(args: argparse.Namespace, task: Task) -> None:
+    """Refuse, before any work, the flags of ``play`` that do not apply to the task's robot.
+
+    Raises:
+        InvalidInputError: A run option of another robot (``--mode``, ``--no-obstacle``) or a
+            ``--camera`` the robot's model lacks; the message names the flag and the robot.
+    """
+    import mujoco
+
+    from lynxsim.resources import model_path
+    from lynxsim.robots import ROBOTS, robot, sim_adapter
+
+    entry = robot(task.robot)
+    accepted = sim_adapter(entry.name).options
+    task_is = f"{args.task} is a task of the {entry.title} (robot {entry.name!r})"
+    for option in _RUN_OPTIONS:
+        if getattr(args, option) is None or option in accepted:
+            continue
+        owners = " or ".join(
+            f"the {r.title} (robot {r.name!r})"
+            for r in ROBOTS.values()
+            if option in sim_adapter(r.name).options
+        )
+        flag = "--" + option.replace("_", "-")
+        raise InvalidInputError(f"{flag} applies only to tasks of {owners}; {task_is}")
+    if args.camera is not None:
+        model = mujoco.MjModel.from_xml_path(str(model_path(entry.model)))
+        cameras = [model.camera(i).name for i in range(model.ncam)]
+        if args.camera not in cameras:
+            raise InvalidInputError(
+                f"--camera {args.camera!r}: the {entry.title} model has no such camera; "
+                f"available: {', '.join(cameras)}"
+            )
+
+
 def _play(args: argparse.Namespace) -> int:
-    from lynxsim.sim.arm_task import run_arm_trajectory
+    from lynxsim.robots import sim_adapter
     from lynxsim.sim.render import Quality, RenderSettings
-    from lynxsim.sim.scene import REPORT_OBSTACLE
     from lynxsim.tasks import load_task
-    from lynxsim.traj import build_trajectory
 
     task = load_task(args.task)
-    if task.robot == "rrr":
-        return _play_rrr(args, task)
-    trajectory = build_trajectory(task, args.type)
-    video = (
-        None
-        if args.no_video
-        else (args.out or Path("videos") / f"{task.name}_{trajectory.kind.value}.mp4")
-    )
-    update, close = progress_bar(f"{task.name} {trajectory.kind.value}", args.json or args.quiet)
+    _check_flags(args, task)
+    adapter = sim_adapter(task.robot)
+    options = {
+        name: getattr(args, name) for name in _RUN_OPTIONS if getattr(args, name) is not None
+    }
+    prepared = adapter.prepare(task, args.type)
+    out = args.out or Path("videos") / f"{task.name}_{prepared.label}.mp4"
+    update, close = progress_bar(f"{task.name} {prepared.label}", args.json or args.quiet)
     try:
-        playback = run_arm_trajectory(
-            trajectory,
-            task=task.name,
-            obstacle=None if args.no_obstacle else REPORT_OBSTACLE,
-            video=video,
+        playback = prepared.run(
+            video=None if args.no_video else out,
             render=RenderSettings(
-                camera=args.camera or "front", quality=Quality(args.quality), fps=args.fps
+                camera=args.camera or adapter.default_camera,
+                quality=Quality(args.quality),
+                fps=args.fps,
             ),
             progress=update,
+            **options,
         )
     finally:
         close()
-    return _print_run(args, playback.report, video)
+    return _print_run(args, playback.report, None if args.no_video else out, out)
 
 
-def _play_rrr(args: argparse.Namespace, task: Task) -> int:
-    from lynxsim.sim.render import Quality, RenderSettings
-    from lynxsim.sim.rrr_task import path_from_task, run_rrr_path
-
-    path = path_from_task(task, args.type)
-    video = (
-        None if args.no_video else (args.out or Path("videos") / f"{task.name}_{path.label}.mp4")
-    )
-    update, close = progress_bar(f"{task.name} {path.label}", args.json or args.quiet)
-    try:
-        playback = run_rrr_path(
-            path,
-            task=task.name,
-            mode=args.mode,
-            video=video,
-            render=RenderSettings(
-                camera=args.camera or "top", quality=Quality(args.quality), fps=args.fps
-            ),
-            progress=update,
-        )
-    finally:
-        close()
-    return _print_run(args, playback.report, video)
-
-
-def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None) -> int:
-    if video is not None:
-        report.write_json(Path(video).with_suffix(".json"))
+def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None, out: Path) -> int:
+    report.write_json(out.with_suffix(".json"))
     if args.json:
         print(json.dumps(report.to_dict(), indent=2))
     else:
@@ -179,6 +176,8 @@ def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None) 
 
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``play`` sub-command."""
+    from lynxsim.cli.units import positive_float
+
     p = sub.add_parser(
         "play",
         help="play a task in MuJoCo: run report and MP4",
@@ -191,17 +190,31 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default=None,
         help="trajectory type overriding the task's (see 'lynxsim traj --list')",
     )
-    p.add_argument("--out", type=Path, default=None, help="MP4 path (default videos/TASK_TYPE.mp4)")
-    p.add_argument("--no-video", action="store_true", help="simulate only")
-    p.add_argument("--no-obstacle", action="store_true", help="the scene without the cylinder")
     p.add_argument(
-        "--camera", default=None, help="camera name: front, top (default front; top for rrr tasks)"
+        "--out",
+        type=Path,
+        default=None,
+        metavar="FILE",
+        help="MP4 path (default videos/TASK_TYPE.mp4)",
+    )
+    p.add_argument("--no-video", action="store_true", help="simulate only")
+    p.add_argument(
+        "--no-obstacle",
+        action="store_const",
+        const=True,
+        default=None,
+        help="arm tasks: the scene without the task's obstacles",
+    )
+    p.add_argument(
+        "--camera",
+        default=None,
+        help="camera of the robot's model: front, top (default front; top for rrr tasks)",
     )
     p.add_argument(
         "--mode",
         type=int,
         choices=range(8),
-        default=7,
+        default=None,
         metavar="0..7",
         help="rrr tasks: working mode of the inverse kinematics (default 7, the report's)",
     )
@@ -211,7 +224,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default="default",
         help="rendering preset: fast (no shadows, no multisampling) or default",
     )
-    p.add_argument("--fps", type=float, default=30.0, help="video frame rate [1/s]")
+    p.add_argument("--fps", type=positive_float, default=30.0, help="video frame rate [1/s]")
     p.add_argument("--json", action="store_true", help="print the report as JSON (SI units)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_play)

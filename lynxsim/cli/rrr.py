@@ -12,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lynxsim.cli.units import Units, add_unit_flags, check_finite, json_list
+from lynxsim.cli.units import Units, add_unit_flags, finite_float, json_list, positive_float
+from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, format_figure20_table
 from lynxsim.rrr import (
     N_MODES,
     RRR_ROBOT,
@@ -23,7 +24,6 @@ from lynxsim.rrr import (
     orientation_range_in_mode,
     singularity_measures,
 )
-from lynxsim.rrr.report import FIGURE20_POSES, REPORT_MODE, format_figure20_table
 
 __all__ = ["register"]
 
@@ -36,7 +36,6 @@ DEFAULT_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
 
 def _ik(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    check_finite([args.x, args.y, args.alpha], "platform pose")
     pose = np.array([u.length_in(args.x), u.length_in(args.y), u.angle_in(args.alpha)])
     result = ik(pose)
     result.raise_for_status()
@@ -86,8 +85,8 @@ def _ik(args: argparse.Namespace) -> int:
 
 def _fk(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    check_finite(args.theta, "actuated angles")
-    theta = np.array([u.angle_in(v) for v in args.theta])
+    typed = [args.theta1, args.theta2, args.theta3]
+    theta = np.array([u.angle_in(v) for v in typed])
     sol = fk_all(theta)
     count = int(sol.num_solutions)
     poses = sol.pose[:count]
@@ -96,7 +95,7 @@ def _fk(args: argparse.Namespace) -> int:
             json.dumps(
                 {
                     "units": {"length": u.length, "angle": u.angle},
-                    "theta": args.theta,
+                    "theta": typed,
                     "assembly_modes": [
                         {
                             "x": float(u.length_out(p[0])),
@@ -129,7 +128,6 @@ def _workspace(args: argparse.Namespace) -> int:
     from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
     from lynxsim.rrr.workspace import workspace_maps
 
-    check_finite(list(args.alpha_deg) + [args.resolution_mm], "--alpha-deg and --resolution-mm")
     alphas = [math.radians(a) for a in args.alpha_deg]
     maps = workspace_maps(alphas, view_extent(alphas), args.resolution_mm * 1e-3)
     plot_rrr_workspace(maps, args.out, mode=args.mode)
@@ -198,7 +196,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         description="Kinematics of the report's planar 3-RRR robot. Working modes 0..7: "
         "bit i set when leg i+1's elbow sign is -1 (see lynxsim.rrr.modes).",
     )
-    rrr_sub = group.add_subparsers(dest="rrr_command", required=True)
+    rrr_sub = group.add_subparsers(required=True, parser_class=type(group))
 
     p = rrr_sub.add_parser(
         "ik",
@@ -207,9 +205,9 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "rad). Prints the base angles of every working mode; an unreachable pose names the "
         "leg that fails and exits with status 1.",
     )
-    p.add_argument("x", type=float, metavar="X")
-    p.add_argument("y", type=float, metavar="Y")
-    p.add_argument("alpha", type=float, metavar="ALPHA")
+    p.add_argument("x", type=finite_float, metavar="X")
+    p.add_argument("y", type=finite_float, metavar="Y")
+    p.add_argument("alpha", type=finite_float, metavar="ALPHA")
     add_unit_flags(p)
     p.set_defaults(handler=_ik)
 
@@ -218,7 +216,8 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         help="every platform pose (assembly mode) of three actuated angles",
         description="Forward kinematics of the actuated angles THETA1..3 [deg] (--si: rad).",
     )
-    p.add_argument("theta", type=float, nargs=3, metavar=("THETA1", "THETA2", "THETA3"))
+    for i in range(1, 4):
+        p.add_argument(f"theta{i}", type=finite_float, metavar=f"THETA{i}")
     add_unit_flags(p)
     p.set_defaults(handler=_fk)
 
@@ -231,14 +230,16 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument(
         "--alpha-deg",
         "--alpha",
-        type=float,
+        type=finite_float,
         nargs="+",
         default=list(DEFAULT_ALPHAS_DEG),
         metavar="DEG",
         help="platform orientations [deg] (default: the report's 0 20 -20 50 -50)",
     )
-    p.add_argument("--out", type=Path, default=Path("rrr_workspace.png"), help="PNG file")
-    p.add_argument("--resolution-mm", type=float, default=2.0, help="grid step [mm]")
+    p.add_argument(
+        "--out", type=Path, default=Path("rrr_workspace.png"), metavar="FILE", help="PNG file"
+    )
+    p.add_argument("--resolution-mm", type=positive_float, default=2.0, help="grid step [mm]")
     p.add_argument(
         "--mode",
         type=_mode_arg,
@@ -253,7 +254,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         description="Print the Figure 20 verdicts (correct geometry and the report's) and "
         "the orientation range at the base centre; --out draws the poses.",
     )
-    p.add_argument("--out", type=Path, default=None, help="PNG file of the poses")
+    p.add_argument("--out", type=Path, default=None, metavar="FILE", help="PNG file of the poses")
     p.add_argument(
         "--mode",
         type=_mode_arg,

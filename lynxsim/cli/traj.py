@@ -15,6 +15,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from lynxsim.arm import tool_pose
+from lynxsim.cli.units import positive_float
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import atomic_path
 from lynxsim.tasks import Task, load_task
@@ -96,7 +97,12 @@ def _comparison(task: Task, out: Path) -> Path:
         except LynxsimError as exc:
             print(f"lynxsim: note: no {kind.value} path in the comparison: {exc}", file=sys.stderr)
     dest = out / f"{task.name}_paths.png"
-    plot_tool_paths(trajectories, dest, title=f"{task.name}: tool paths of every trajectory type")
+    plot_tool_paths(
+        trajectories,
+        dest,
+        obstacles=task.scene.obstacles,
+        title=f"{task.name}: tool paths of every trajectory type",
+    )
     return dest
 
 
@@ -118,7 +124,7 @@ def _traj(args: argparse.Namespace) -> int:
     traj = build_trajectory(task, args.type)
     t = traj.times_at_rate(args.rate_hz)
     data = _samples(traj, t, args.si)
-    out: Path = args.out
+    out: Path = args.out_dir
     stem = f"{task.name}_{traj.kind.value}"
     samples = out / f"{stem}.{args.format}"
     if args.format == "csv":
@@ -142,13 +148,6 @@ def _traj(args: argparse.Namespace) -> int:
     return 0
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not (np.isfinite(value) and value > 0.0):
-        raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
-    return value
-
-
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``traj`` sub-command."""
     types = [k.value for k in TrajectoryKind]
@@ -166,10 +165,16 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument(
         "--type", choices=types, default=None, help="trajectory type (default: the task's)"
     )
-    p.add_argument("--out", type=Path, default=Path("out"), help="output folder (default out/)")
+    p.add_argument(
+        "--out-dir",
+        type=Path,
+        default=Path("out"),
+        metavar="DIR",
+        help="output folder (default out/)",
+    )
     p.add_argument(
         "--rate-hz",
-        type=_positive,
+        type=positive_float,
         default=500.0,
         help="sampling rate of the written samples (default 500)",
     )
@@ -178,7 +183,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     timing = p.add_mutually_exclusive_group()
     timing.add_argument(
         "--segment-duration-s",
-        type=_positive,
+        type=positive_float,
         default=None,
         help="duration of every segment, overriding the task's",
     )

@@ -1,4 +1,4 @@
-"""Units at the command line: mm and degrees by default, SI with ``--si``."""
+"""Units and numbers at the command line: mm and degrees by default, SI with ``--si``."""
 
 from __future__ import annotations
 
@@ -8,9 +8,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.errors import InvalidInputError
-
-__all__ = ["Units", "add_unit_flags", "check_finite", "json_list"]
+__all__ = ["Units", "add_unit_flags", "finite_float", "json_list", "positive_float"]
 
 
 class Units:
@@ -54,10 +52,23 @@ def json_list(a: npt.ArrayLike) -> list[float]:
     return out
 
 
-def check_finite(values: list[float], what: str) -> None:
-    """Raise :class:`InvalidInputError` naming ``what`` if a value is NaN or infinite."""
-    if not all(math.isfinite(v) for v in values):
-        raise InvalidInputError(f"{what} must be finite numbers, got {values}")
+def finite_float(text: str) -> float:
+    """Argparse type: any float literal of a finite number; NaN and infinities refused."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"invalid float value: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be a finite number, got {text!r}")
+    return value
+
+
+def positive_float(text: str) -> float:
+    """Argparse type: a finite number > 0."""
+    value = finite_float(text)
+    if value <= 0.0:
+        raise argparse.ArgumentTypeError(f"must be a positive number, got {text!r}")
+    return value
 
 
 def add_unit_flags(p: argparse.ArgumentParser) -> None:

@@ -7,6 +7,7 @@ summary table. Used by ``lynxsim demo``.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -69,17 +70,23 @@ def run_arm_demo(
         playback = run_arm_trajectory(
             run.trajectory,
             task=run.task.name,
+            scene=run.task.scene,
             video=out / f"{run.stem}.mp4",
             render=render,
-            progress=None if progress is None else (lambda f, i=i: progress(i, f)),
+            progress=None if progress is None else functools.partial(progress, i),
         )
         playback.report.write_json(out / f"{run.stem}.json")
         reports.append(playback.report)
-    by_task: dict[str, dict[str, Trajectory]] = {}
+    by_task: dict[str, tuple[Task, dict[str, Trajectory]]] = {}
     for run in runs:
-        by_task.setdefault(run.task.name, {})[run.trajectory.kind.value] = run.trajectory
-    for name, trajectories in by_task.items():
+        by_task.setdefault(run.task.name, (run.task, {}))[1][run.trajectory.kind.value] = (
+            run.trajectory
+        )
+    for name, (task, trajectories) in by_task.items():
         plot_tool_paths(
-            trajectories, plots / f"{name}_paths.png", title=f"{name}: tool paths of every type"
+            trajectories,
+            plots / f"{name}_paths.png",
+            obstacles=task.scene.obstacles,
+            title=f"{name}: tool paths of every type",
         )
     return reports

@@ -1,6 +1,17 @@
 """Gymnasium environments of the arm: ``LynxPickAndPlace-v0`` and ``LynxReach-v0``.
 
-This package's import is light (registration only); the env classes, the
+Importing this package registers the envs with Gymnasium (as Gymnasium-Robotics
+does)::
+
+    import gymnasium as gym
+    import lynxsim.envs
+
+    gym.register_envs(lynxsim.envs)  # a no-op that keeps linters from removing the import
+    env = gym.make("LynxPickAndPlace-v0")
+
+or, with no import, ``gym.make("lynxsim.envs:LynxPickAndPlace-v0")``.
+
+The import is light (registration only: Gymnasium, no MuJoCo); the env classes, the
 scripted experts and the evaluation helpers load, with MuJoCo, on first use.
 """
 
@@ -42,3 +53,6 @@ def __getattr__(name: str) -> Any:
     if name in _LAZY:
         return getattr(importlib.import_module(_LAZY[name]), name)
     raise AttributeError(f"module 'lynxsim.envs' has no attribute {name!r}")
+
+
+register_envs()

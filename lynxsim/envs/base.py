@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import enum
 import math
+from collections.abc import Sequence
 from typing import Any, ClassVar, Literal
 
 import gymnasium as gym
@@ -25,16 +26,15 @@ import numpy.typing as npt
 import lynxsim.sim  # noqa: F401
 
 # isort: split
-import mujoco  # type: ignore[import-untyped]
+import mujoco
 
-from lynxsim.arm import LYNX_ARM
+from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
 from lynxsim.envs.control import (
     ControlMode,
     JointSpaceController,
     TargetStatus,
     ToolSpaceController,
 )
-from lynxsim.envs.kinematics import ik_nearest, tool_pose_of
 from lynxsim.envs.rendering import RENDER_MODES, EnvRenderer
 from lynxsim.envs.reward import RewardType, collision_flags, goal_distance, goal_reward
 from lynxsim.envs.workspace import (
@@ -46,9 +46,9 @@ from lynxsim.envs.workspace import (
     top_down_reachable,
 )
 from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
-from lynxsim.sim import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_spec, table_top_z
-from lynxsim.sim.arm_playback import arm_binding
-from lynxsim.sim.arm_task import GRIPPER_OPEN_M
+from lynxsim.scene import REPORT_CUBE, REPORT_CYLINDER, Box, Cylinder, Obstacle, Scene, Sphere
+from lynxsim.sim.arm.model import SceneIds, load_arm_spec, table_top_z
+from lynxsim.sim.arm.task import GRIPPER_OPEN_M
 from lynxsim.sim.render import Quality, RenderSettings
 
 __all__ = ["READY_TOOL_POSE", "CollisionCheck", "LynxArmEnv", "check_control_dt"]
@@ -128,7 +128,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         control: ``"tool"`` (tool-space deltas through the IK) or ``"joint"``.
         reward_type: ``"sparse"`` or ``"dense"``.
         distance_threshold: Success radius around the goal [m].
-        obstacle: The cylinder obstacle (default: the report's), or None.
+        obstacles: The obstacles (:mod:`lynxsim.scene`; default: the report's cylinder;
+            ``()`` for none).
         collision_penalty: Subtracted from the reward on a step with arm–obstacle
             contact, >= 0.
         terminate_on_collision: End the episode on arm–obstacle contact.
@@ -162,7 +163,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         control: Literal["tool", "joint"] | ControlMode = "tool",
         reward_type: Literal["sparse", "dense"] | RewardType = "sparse",
         distance_threshold: float = 0.025,
-        obstacle: ObstacleSpec | None = REPORT_OBSTACLE,
+        obstacles: Sequence[Obstacle] = (REPORT_CYLINDER,),
         collision_penalty: float = 0.0,
         terminate_on_collision: bool = False,
         collision_check: Literal["control_step", "physics_step"] | CollisionCheck = "control_step",
@@ -189,15 +190,21 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
             raise InvalidInputError(f"distance_threshold must be > 0 m, got {distance_threshold}")
         if not (math.isfinite(collision_penalty) and collision_penalty >= 0.0):
             raise InvalidInputError(f"collision_penalty must be >= 0, got {collision_penalty}")
-        if obstacle is not None and not isinstance(obstacle, ObstacleSpec):
-            raise InvalidInputError(f"obstacle must be an ObstacleSpec or None, got {obstacle!r}")
         self.render_mode = render_mode
         self.distance_threshold = float(distance_threshold)
         self.collision_penalty = float(collision_penalty)
         self.terminate_on_collision = bool(terminate_on_collision)
-        self.obstacle = obstacle
+        if not isinstance(obstacles, list | tuple) or not all(
+            isinstance(o, Cylinder | Box | Sphere) for o in obstacles
+        ):
+            raise InvalidInputError(
+                f"obstacles must be a sequence of Cylinder, Box or Sphere, got {obstacles!r}"
+            )
+        cube = REPORT_CUBE if self._HAS_CUBE else None
+        self.scene = Scene(tuple(obstacles), cube=cube)
+        self.obstacles = self.scene.obstacles
 
-        spec = load_arm_spec(obstacle, cube=self._HAS_CUBE)
+        spec = load_arm_spec(self.scene)
         self.table_top_z = table_top_z(spec)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
@@ -255,13 +262,9 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._grip_act = ids.gripper_actuator
         self._finger_qpos = [int(m.jnt_qposadr[j]) for j in ids.finger_joints]
         self._finger_dof = [int(m.jnt_dofadr[j]) for j in ids.finger_joints]
-        binding = arm_binding(m)
-        robot = np.flatnonzero(binding.robot_geoms).tolist()
-        obstacle = np.flatnonzero(binding.obstacle_geoms).tolist()
-        self._arm_obstacle_pairs = frozenset(
-            pair for r in robot for o in obstacle for pair in ((r, o), (o, r))
-        )
-        self._has_obstacle = bool(obstacle)
+        groups = ids.collision_groups(m)
+        self._arm_obstacle_pairs = groups.obstacle_pairs()
+        self._has_obstacle = bool(len(groups.obstacle_geoms))
         self._goal_mark = m.site(_GOAL_MARK_SITE).id
 
     @property
@@ -382,8 +385,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         for _ in range(_MAX_DRAWS):
             p = sample_points(rng, region, _DRAW_BATCH)
             ok = top_down_reachable(p)
-            if self.obstacle is not None:
-                ok &= clear_of_obstacle(p, self.obstacle.center, self.obstacle.radius)
+            for obstacle in self.obstacles:
+                ok &= clear_of_obstacle(p, obstacle)
             if away_from is not None:
                 gap = p - np.asarray(away_from, dtype=float)
                 ok &= np.sqrt(np.sum(gap * gap, axis=1)) > self.distance_threshold
@@ -392,7 +395,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
                 point: FloatArray = p[hits[0]]
                 return point
         raise InvalidInputError(
-            f"found no point of {region} that the arm reaches top-down clear of {self.obstacle}"
+            f"found no point of {region} that the arm reaches top-down clear of {self.obstacles}"
         )
 
     # --------------------------------------------------------------- step
@@ -467,7 +470,12 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         return hit
 
     def _touching_obstacle(self) -> bool:
-        """Whether an arm collision geom touches the obstacle in the current contacts."""
+        """Whether the arm or the cube touches an obstacle in the current contacts.
+
+        The pairs are those :func:`lynxsim.sim.collision.classify_contacts` calls
+        obstacle hits (:meth:`~lynxsim.sim.collision.CollisionGroups.obstacle_pairs`),
+        looked up in a set: this runs every physics step.
+        """
         if not self._has_obstacle or self.data.ncon == 0:
             return False
         contact = self.data.contact

@@ -229,7 +229,7 @@ def evaluate(
         seed: Seed of the first episode (and of the random policy).
         video: MP4 path for the first ``video_episodes`` episodes, or None.
         video_episodes: Episodes recorded into ``video``.
-        env_kwargs: Extra arguments of ``gym.make`` (e.g. ``{"obstacle": None}``).
+        env_kwargs: Extra arguments of ``gym.make`` (e.g. ``{"obstacles": ()}``).
         on_episode: Called after every episode.
 
     Returns:

@@ -10,7 +10,7 @@ import numpy as np
 from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs
 from lynxsim.envs.workspace import PolarRegion
 from lynxsim.errors import InvalidInputError
-from lynxsim.sim import CUBE_BODY
+from lynxsim.sim.arm.model import CUBE_BODY
 
 __all__ = ["CUBE_HALF_SIZE_M", "PickAndPlaceEnv"]
 
@@ -33,7 +33,7 @@ class PickAndPlaceEnv(LynxArmEnv):
     (friction only: no weld, no attachment), carry it and bring it to a goal
     point on the table or, like Fetch's pick-and-place, in the air above it. The
     report's obstacle (a cylinder of radius 40 mm at (150, 150) mm, 400 mm tall)
-    stands on the table unless ``obstacle`` removes or moves it. Units are SI;
+    stands on the table unless ``obstacles`` removes or moves it. Units are SI;
     the frame is the arm's base frame (z up, table top at z = -12.5 mm).
 
     **Action space** ``Box(-1, 1, (5,), float32)`` with ``control="tool"`` (default):
@@ -123,7 +123,7 @@ class PickAndPlaceEnv(LynxArmEnv):
     **Arguments** (all keyword): ``goal_in_air_prob`` (0.5) and those of
     :class:`~lynxsim.envs.base.LynxArmEnv`: ``render_mode`` (None, ``"rgb_array"``,
     ``"human"``), ``control`` (``"tool"``, ``"joint"``), ``reward_type``
-    (``"sparse"``, ``"dense"``), ``distance_threshold`` [m], ``obstacle`` (an
+    (``"sparse"``, ``"dense"``), ``distance_threshold`` [m], ``obstacles`` (a
     :class:`~lynxsim.sim.ObstacleSpec`, or None), ``collision_penalty``,
     ``terminate_on_collision``, ``collision_check``, ``control_dt`` [s] (0.04: 25 Hz
     over the 2 ms physics step; a non-multiple raises), ``position_step`` [m],

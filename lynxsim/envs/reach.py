@@ -18,7 +18,7 @@ class ReachEnv(LynxArmEnv):
     """Reach a point with the tool of the report's 5-DOF arm (the easy sibling of pick-and-place).
 
     The scene is pick-and-place's without the cube: the arm, the table and (unless
-    ``obstacle`` removes or moves it) the report's cylinder obstacle. The gripper
+    ``obstacles`` removes or moves it) the report's cylinder obstacle. The gripper
     stays open and is not part of the action. SI units, arm base frame.
 
     **Action space** ``Box(-1, 1, (4,), float32)`` with ``control="tool"`` (default):

@@ -1,7 +1,10 @@
 """Registering the lynxsim envs with Gymnasium (string entry points: imports no MuJoCo).
 
-``import lynxsim`` calls :func:`register_envs`, so ``gym.make("LynxPickAndPlace-v0")``
-works after it; the env modules (and MuJoCo) load on the first ``make``.
+``import lynxsim.envs`` calls :func:`register_envs`, so after it
+``gym.make("LynxPickAndPlace-v0")`` works; ``gym.make("lynxsim.envs:LynxPickAndPlace-v0")``
+works without it (Gymnasium imports the module named before the colon). The env
+modules (and MuJoCo) load on the first ``make``. ``import lynxsim`` registers nothing,
+so the math packages stay free of Gymnasium.
 """
 
 from __future__ import annotations

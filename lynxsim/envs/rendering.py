@@ -12,7 +12,7 @@ from __future__ import annotations
 import os
 from typing import Any
 
-import mujoco  # type: ignore[import-untyped]
+import mujoco
 import numpy as np
 import numpy.typing as npt
 
@@ -75,7 +75,7 @@ class EnvRenderer:
             return self._scene.render(data, Overlay(targets=goal.reshape(1, 3)))
         if self.mode == "human":
             if self._viewer is None:
-                import mujoco.viewer  # type: ignore[import-untyped]
+                import mujoco.viewer
 
                 self._viewer = mujoco.viewer.launch_passive(self._model, data)
             self._viewer.sync()

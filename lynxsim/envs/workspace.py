@@ -22,6 +22,7 @@ import numpy.typing as npt
 
 from lynxsim.arm import ik
 from lynxsim.errors import InvalidInputError
+from lynxsim.scene import Box, Obstacle
 
 __all__ = [
     "ARM_HALF_WIDTH_M",
@@ -32,6 +33,7 @@ __all__ = [
     "TUCK_RADIUS_M",
     "PolarRegion",
     "clear_of_obstacle",
+    "footprint",
     "sample_points",
     "top_down_reachable",
 ]
@@ -107,27 +109,35 @@ def top_down_reachable(points: npt.ArrayLike, carry_height: float = CARRY_HEIGHT
     return ok
 
 
+def footprint(obstacle: Obstacle) -> tuple[tuple[float, float], float]:
+    """A circle that covers an obstacle seen from above: ((x, y) centre [m], radius [m]).
+
+    Exact for cylinders and spheres; a box's circumscribed circle (conservative).
+    """
+    x, y = obstacle.position[0], obstacle.position[1]
+    if isinstance(obstacle, Box):
+        return (x, y), 0.5 * math.hypot(obstacle.size[0], obstacle.size[1])
+    return (x, y), obstacle.radius
+
+
 def clear_of_obstacle(
-    points: npt.ArrayLike,
-    center: tuple[float, float],
-    radius: float,
-    margin: float = OBSTACLE_MARGIN_M,
+    points: npt.ArrayLike, obstacle: Obstacle, margin: float = OBSTACLE_MARGIN_M
 ) -> BoolArray:
-    """Whether the arm, turned towards each point, keeps clear of a vertical cylinder.
+    """Whether the arm, turned towards each point, keeps clear of an obstacle seen from above.
 
     Seen from above the arm covers the strip of half-width :data:`ARM_HALF_WIDTH_M`
     along the segment from ``_BEHIND_M`` behind the base axis to ``_BEYOND_M`` past
-    the point; the cylinder's circle must stay ``margin`` away from it.
+    the point; the obstacle's :func:`footprint` must stay ``margin`` away from it.
 
     Args:
         points: Points, shape (N, 2) or (N, 3) [m] (z is ignored).
-        center: (x, y) of the cylinder's axis [m].
-        radius: Its radius [m].
+        obstacle: The obstacle (:mod:`lynxsim.scene`).
         margin: Clearance [m].
 
     Returns:
         Mask, shape (N,).
     """
+    center, radius = footprint(obstacle)
     p = np.asarray(points, dtype=float)
     xy = p.reshape(-1, p.shape[-1])[:, :2]
     rho = np.hypot(xy[:, 0], xy[:, 1])

@@ -8,19 +8,24 @@ the cylinder obstacle are its Figure 19. Axes in the report's units: degrees, mi
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
 from matplotlib.axes import Axes
-from matplotlib.patches import Circle
 
 from lynxsim.arm import LYNX_ARM, tool_pose
+from lynxsim.plots.obstacles import (
+    draw_obstacles_3d,
+    draw_obstacles_top,
+    inside_any,
+    obstacle_extent_mm,
+)
 from lynxsim.plots.style import new_figure, save_figure
-from lynxsim.reference import OBSTACLE, Obstacle
+from lynxsim.scene import REPORT_CYLINDER, Obstacle
 from lynxsim.traj import Trajectory
 
-__all__ = ["inside_obstacle", "plot_joint_profiles", "plot_tool_paths"]
+__all__ = ["plot_joint_profiles", "plot_tool_paths"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -111,39 +116,11 @@ def plot_joint_profiles(
     save_figure(fig, dest)
 
 
-def inside_obstacle(position: FloatArray, obstacle: Obstacle = OBSTACLE) -> npt.NDArray[np.bool_]:
-    """Which tool points lie inside the cylinder obstacle.
-
-    Args:
-        position: Tool points, shape (..., 3) [m].
-        obstacle: The cylinder, in mm (:data:`lynxsim.reference.OBSTACLE`).
-
-    Returns:
-        Shape (...).
-    """
-    p_mm = np.asarray(position) * 1e3
-    cx, cy = obstacle.center_mm
-    radial = np.hypot(p_mm[..., 0] - cx, p_mm[..., 1] - cy)
-    return (
-        (radial < obstacle.radius_mm) & (p_mm[..., 2] >= 0.0) & (p_mm[..., 2] <= obstacle.height_mm)
-    )
-
-
-def _cylinder(ax: Axes, obstacle: Obstacle) -> None:
-    cx, cy = obstacle.center_mm
-    theta = np.linspace(0.0, 2.0 * np.pi, 60)
-    z = np.array([0.0, obstacle.height_mm])
-    th, zz = np.meshgrid(theta, z)
-    xs = cx + obstacle.radius_mm * np.cos(th)
-    ys = cy + obstacle.radius_mm * np.sin(th)
-    ax.plot_surface(xs, ys, zz, color="0.5", alpha=0.35, linewidth=0)  # type: ignore[attr-defined]
-
-
 def plot_tool_paths(
     trajectories: Mapping[str, Trajectory],
     dest: str | os.PathLike[str],
     *,
-    obstacle: Obstacle = OBSTACLE,
+    obstacles: Sequence[Obstacle] = (REPORT_CYLINDER,),
     rate_hz: float = 200.0,
     title: str | None = None,
 ) -> None:
@@ -156,7 +133,7 @@ def plot_tool_paths(
     Args:
         trajectories: Label to trajectory, all through the same waypoints.
         dest: PNG path (written atomically).
-        obstacle: The cylinder to draw (mm).
+        obstacles: The obstacles to draw (default: the report's cylinder).
         rate_hz: Sampling rate of the lines [Hz].
         title: Figure title.
     """
@@ -165,14 +142,12 @@ def plot_tool_paths(
     ax3 = fig.add_subplot(grid[0], projection="3d")
     ax2 = fig.add_subplot(grid[1])
     first = next(iter(trajectories.values()))
-    cx, cy = obstacle.center_mm
-    r = obstacle.radius_mm
-    extent = [np.array([[cx - r, cy - r, 0.0], [cx + r, cy + r, obstacle.height_mm]])]
+    extent = [obstacle_extent_mm(obstacles)]
     for label, traj in trajectories.items():
         t = np.append(traj.times_at_rate(rate_hz), traj.duration)
         path = tool_pose(traj.sample(t).q).position
         marks = tool_pose(traj.sample(traj.times_per_segment(REPORT_STEPS)).q).position * 1e3
-        hit = " — tool crosses the obstacle" if inside_obstacle(path, obstacle).any() else ""
+        hit = " — tool crosses the obstacle" if inside_any(path, obstacles).any() else ""
         p = path * 1e3
         extent.append(p)
         (line,) = ax3.plot(
@@ -181,7 +156,7 @@ def plot_tool_paths(
         ax3.scatter(marks[:, 0], marks[:, 1], marks[:, 2], s=6, color=line.get_color())
         ax2.plot(p[:, 0], p[:, 1], lw=1.4, color=line.get_color())
         ax2.plot(marks[:, 0], marks[:, 1], ".", ms=4, color=line.get_color())
-    _cylinder(ax3, obstacle)
+    draw_obstacles_3d(ax3, obstacles)
     targets = np.array([pose.position for pose in first.waypoints.poses]) * 1e3
     ax3.scatter(
         targets[:, 0],
@@ -196,7 +171,7 @@ def plot_tool_paths(
         ax3.text(xyz[0], xyz[1], xyz[2] + 15.0, pose.name, fontsize=9)
         ax2.annotate(pose.name, xyz[:2], textcoords="offset points", xytext=(5, 5), fontsize=9)
     ax2.plot(targets[:, 0], targets[:, 1], "ko", mfc="none", ms=7)
-    ax2.add_patch(Circle((cx, cy), r, color="0.5", alpha=0.4))
+    draw_obstacles_top(ax2, obstacles)
     ax2.plot(0.0, 0.0, "k+", ms=10)
     ax2.set_aspect("equal")
     ax2.grid(alpha=0.3)

@@ -9,12 +9,10 @@ from typing import NamedTuple
 
 __all__ = [
     "FK_CASES",
-    "OBSTACLE",
     "TABLE4",
     "TABLE4_P1_ELBOW_MM",
     "TABLE4_P1_WRIST_MM",
     "FKCase",
-    "Obstacle",
     "Table4Row",
 ]
 
@@ -40,14 +38,6 @@ class Table4Row(NamedTuple):
     q_deg: tuple[float, float, float, float]
 
 
-class Obstacle(NamedTuple):
-    """The report's vertical cylinder obstacle."""
-
-    center_mm: tuple[float, float]
-    radius_mm: float
-    height_mm: float
-
-
 FK_CASES = (
     FKCase((-25.27, 100.5, -41.19, -13.62, 154.6), (107.31, -50.66, 415.13), 45.69),
     FKCase((-6.61, 38.19, -144.24, 58.24, 63.00), (142.83, -16.56, -62.05), -47.80),
@@ -63,5 +53,3 @@ TABLE4 = (
 
 TABLE4_P1_ELBOW_MM = (0.0, 147.16, 104.89)
 TABLE4_P1_WRIST_MM = (0.0, 300.0, 98.0)
-
-OBSTACLE = Obstacle(center_mm=(150.0, 150.0), radius_mm=40.0, height_mm=400.0)

@@ -15,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.sim.collision import CollisionGroups
 
 __all__ = ["RobotBinding", "body_subtree", "geoms_of_bodies", "name_to_id"]
 
@@ -58,37 +59,22 @@ def geoms_of_bodies(
 
 @dataclass(frozen=True)
 class RobotBinding:
-    """Ids of the driven joints and of the geoms the verdicts are about.
+    """Ids of the driven joints, the tracked site and the collision groups.
 
     Attributes:
         actuator_ids: Position actuators of the commanded joints, shape (n,).
         qpos_adr: qpos addresses of those joints, shape (n,).
         tool_site_id: The site whose position is tracked (tool point, platform centre).
-        robot_geoms: Mask over geoms belonging to the robot (colliding ones), (ngeom,).
-        obstacle_geoms: Mask over the obstacle's geoms, (ngeom,).
-        support_geoms: Mask over the table/floor geoms, (ngeom,).
+        groups: Which geoms are robot, payload, obstacles and support
+            (:mod:`lynxsim.sim.collision`).
         gripper_actuator_id: The gripper's actuator, or None.
-        payload_geoms: Mask over what the robot carries (the cube), (ngeom,), or
-            None. A payload touching the obstacle is a collision of the robot and
-            counts in the clearance; its contacts with the robot or the table do not.
     """
 
     actuator_ids: IntArray
     qpos_adr: IntArray
     tool_site_id: int
-    robot_geoms: BoolArray
-    obstacle_geoms: BoolArray
-    support_geoms: BoolArray
+    groups: CollisionGroups
     gripper_actuator_id: int | None = None
-    payload_geoms: BoolArray | None = None
-
-    @property
-    def carried_geoms(self) -> BoolArray:
-        """Robot and payload geoms: what must not touch the obstacle, (ngeom,)."""
-        if self.payload_geoms is None:
-            return self.robot_geoms
-        carried: BoolArray = self.robot_geoms | self.payload_geoms
-        return carried
 
     @staticmethod
     def for_joints(model: mujoco.MjModel, joint_names: Iterable[str]) -> tuple[IntArray, IntArray]:

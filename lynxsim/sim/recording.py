@@ -1,84 +1,98 @@
-"""Step hooks of a playback: MP4 recording at the video rate, progress, chaining."""
+"""Videos of runs, rendered from their logs; progress hooks of the stepping.
+
+:func:`render_log` draws any :class:`~lynxsim.sim.rollout.PlaybackLog` (a run
+just stepped, or one of a batch) into an MP4: video time is simulated time,
+frame ``i`` shows the first recorded step at or after ``i / fps``, the tracked
+site's path so far (the log's ``tool``) is traced, targets are marked, and bodies of the robot
+touching an obstacle are drawn red.
+"""
 
 from __future__ import annotations
 
-import contextlib
 import os
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 import mujoco
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.sim.playback import StepHook
+from lynxsim.sim.collision import classify_contacts
 from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
-from lynxsim.sim.video import FrameSink, mp4_writer
+from lynxsim.sim.rollout import PlaybackLog, StepHook
+from lynxsim.sim.video import mp4_writer
 
-__all__ = ["FrameRecorder", "ProgressFn", "chain_hooks", "progress_hook", "recorder"]
+__all__ = ["ProgressFn", "frame_steps", "progress_hook", "render_log", "split_progress"]
 
 ProgressFn = Callable[[float], None]
 """Called with the fraction of a run done, 0..1."""
 
 
-class FrameRecorder:
-    """A playback step hook that renders a frame whenever video time is due.
-
-    Video time is simulated time: frame ``i`` shows the state at ``i / fps``
-    (the first physics step at or after it). The tool site's path so far is
-    traced, targets are marked, and bodies touching the obstacle are drawn red.
+def frame_steps(time_s: npt.ArrayLike, fps: float) -> npt.NDArray[np.intp]:
+    """Which recorded step each video frame shows: the first at or after ``i / fps``.
 
     Args:
-        renderer: The renderer (its settings give the fps).
-        sink: Where frames go (an MP4 writer).
-        site_id: Site whose path is traced.
-        targets: Points to mark, shape (M, 3) [m].
+        time_s: Times of the recorded steps, (S,) [s], increasing.
+        fps: Frame rate [1/s].
+
+    Returns:
+        Step index of each frame, (F,).
     """
-
-    def __init__(
-        self,
-        renderer: SceneRenderer,
-        sink: FrameSink,
-        site_id: int,
-        targets: npt.ArrayLike = (),
-    ) -> None:
-        self._renderer = renderer
-        self._sink = sink
-        self._site = site_id
-        self._targets = np.asarray(targets, dtype=float).reshape(-1, 3)
-        self._period = 1.0 / renderer.settings.fps
-        self._path: list[npt.NDArray[np.float64]] = []
-        self.frames = 0
-
-    def __call__(self, step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
-        """Record the tool point; render if a frame is due."""
-        self._path.append(data.site_xpos[self._site].copy())
-        if data.time + 1e-9 < self.frames * self._period:
-            return
-        overlay = Overlay(
-            path=np.asarray(self._path), targets=self._targets, contact_bodies=touching
-        )
-        self._sink.append_data(self._renderer.render(data, overlay))
-        self.frames += 1
+    t = np.asarray(time_s, dtype=float)
+    if len(t) == 0:
+        return np.zeros(0, dtype=np.intp)
+    count = int(np.floor((t[-1] + 1e-9) * fps)) + 1
+    due = np.arange(count) / fps
+    steps: npt.NDArray[np.intp] = np.searchsorted(t + 1e-9, due, side="left").astype(np.intp)
+    return steps[steps < len(t)]
 
 
-@contextlib.contextmanager
-def recorder(
+def render_log(
     model: mujoco.MjModel,
-    video: str | os.PathLike[str] | None,
+    log: PlaybackLog,
+    video: str | os.PathLike[str],
     settings: RenderSettings,
-    site_id: int,
     targets: npt.ArrayLike = (),
-) -> Iterator[FrameRecorder | None]:
-    """A :class:`FrameRecorder` writing ``video`` (None: no video, yields None).
+    progress: ProgressFn | None = None,
+) -> int:
+    """Render a run's log into an MP4 (which appears only when complete).
 
-    The renderer and the MP4 writer are closed on exit; the file appears only
-    when complete.
+    Args:
+        model: The model the log was recorded with.
+        log: The run's log.
+        video: MP4 path.
+        settings: Frame size, camera, quality and fps.
+        targets: Points to mark, shape (M, 3) [m].
+        progress: Called with the fraction of frames done.
+
+    Returns:
+        The number of frames written.
     """
-    if video is None:
-        yield None
-        return
+    data = mujoco.MjData(model)
+    marks = np.asarray(targets, dtype=float).reshape(-1, 3)
+    c = classify_contacts(log.meta.groups, log.contact_geoms, log.contact_dist)
+    hit_step = log.contact_step[c.obstacle]
+    hit_geom = np.where(
+        c.carried_first[c.obstacle],
+        log.contact_geoms[c.obstacle, 0],
+        log.contact_geoms[c.obstacle, 1],
+    )
+    body_of = np.asarray(model.geom_bodyid)
+    frames = frame_steps(log.time_s, settings.fps)
     with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
-        yield FrameRecorder(renderer, sink, site_id, targets)
+        for i, k in enumerate(frames.tolist()):
+            data.qpos[:] = log.qpos[k]
+            mujoco.mj_kinematics(model, data)
+            mujoco.mj_camlight(model, data)
+            touching = frozenset(body_of[hit_geom[hit_step == k]].tolist())
+            overlay = Overlay(
+                path=log.tool[: k + 1],
+                targets=marks,
+                contact_bodies=touching,
+            )
+            sink.append_data(renderer.render(data, overlay))
+            if progress is not None:
+                progress((i + 1) / len(frames))
+    return len(frames)
 
 
 def progress_hook(total_s: float, dt: float, progress: ProgressFn | None) -> StepHook | None:
@@ -87,21 +101,30 @@ def progress_hook(total_s: float, dt: float, progress: ProgressFn | None) -> Ste
         return None
     every = max(1, round(0.05 * total_s / dt))
 
-    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
+    def hook(step: int, data: mujoco.MjData) -> None:
         if step % every == 0:
             progress(min(1.0, data.time / total_s))
 
     return hook
 
 
-def chain_hooks(*hooks: StepHook | None) -> StepHook | None:
-    """One step hook calling each given one in order (None if none is given)."""
-    active = [h for h in hooks if h is not None]
-    if not active:
-        return None
+def split_progress(
+    progress: ProgressFn | None, video: bool
+) -> tuple[ProgressFn | None, ProgressFn | None]:
+    """Progress callbacks of the stepping and the rendering of one run.
 
-    def hook(step: int, data: mujoco.MjData, touching: frozenset[int]) -> None:
-        for h in active:
-            h(step, data, touching)
+    With a video, stepping reports 0..0.5 and rendering 0.5..1; without, stepping 0..1.
+    """
+    if progress is None:
+        return None, None
+    if not video:
+        return progress, None
+    report = progress
 
-    return hook
+    def stepping(f: float) -> None:
+        report(0.5 * f)
+
+    def rendering(f: float) -> None:
+        report(0.5 + 0.5 * f)
+
+    return stepping, rendering

@@ -15,7 +15,7 @@ from typing import Any
 
 from lynxsim.fileio import write_json
 
-__all__ = ["CollisionVerdict", "ContactPair", "RunReport"]
+__all__ = ["CollisionVerdict", "ContactPair", "ObstacleClearance", "RobotMetrics", "RunReport"]
 
 
 @dataclass(frozen=True)
@@ -43,6 +43,7 @@ class CollisionVerdict:
         collided: True if any robot or payload geom touched the obstacle at any physics step.
         first_time_s: Time of the first contact [s], or None.
         first_pair: The (robot or payload geom, obstacle geom) names of that contact, or None.
+        first_obstacle: Name of the obstacle hit first (the scene's name), or None.
         max_penetration_m: Deepest penetration [m] (0 when clear).
         steps_in_contact: Number of physics steps with such a contact.
         pairs: Every geom pair that touched.
@@ -51,9 +52,39 @@ class CollisionVerdict:
     collided: bool
     first_time_s: float | None
     first_pair: tuple[str, str] | None
+    first_obstacle: str | None
     max_penetration_m: float
     steps_in_contact: int
     pairs: tuple[ContactPair, ...] = ()
+
+
+@dataclass(frozen=True)
+class ObstacleClearance:
+    """One obstacle over a run.
+
+    Attributes:
+        name: The obstacle's name in the scene.
+        collided: Whether the robot or its payload touched it.
+        first_contact_s: Time of the first contact [s], or None.
+        min_clearance_m: Smallest signed distance to the robot or payload [m]
+            (negative: penetration).
+        min_clearance_time_s: When it occurred [s].
+    """
+
+    name: str
+    collided: bool
+    first_contact_s: float | None
+    min_clearance_m: float
+    min_clearance_time_s: float
+
+
+@dataclass(frozen=True)
+class RobotMetrics:
+    """Base class of the figures one robot adds to a run report (see its ``sim`` adapter)."""
+
+    def lines(self) -> list[str]:
+        """The figures as readable lines (mm, degrees)."""
+        return []
 
 
 @dataclass(frozen=True)
@@ -75,15 +106,16 @@ class RunReport:
         max_torque_ratio: Largest |actuator force| / force limit per joint, (5,)
             (1.0 means the servo saturated at its datasheet stall torque).
         obstacle: The obstacle-collision verdict (None if the scene has no obstacle).
-        min_clearance_m: Smallest distance between any robot or payload geom and the obstacle [m]
-            (negative: penetration; None without obstacle).
+        obstacles: Per obstacle of the scene: hit or not, first contact, clearance.
+        min_clearance_m: Smallest distance between any robot or payload geom and any
+            obstacle [m] (negative: penetration; None without obstacle).
         min_clearance_time_s: When it occurred [s].
         self_collisions: Robot-robot geom pairs that touched.
         floor_contacts: Robot geoms that touched the table or floor.
         healthy: No MuJoCo warning and no NaN during the run.
         warnings: MuJoCo warning counts by name (only those that fired).
         diverged_at_s: Time at which the state became non-finite, or None.
-        extra: Robot-specific figures (e.g. loop-closure error of the 3-RRR).
+        metrics: Robot-specific figures (e.g. the 3-RRR's loop closure), or None.
     """
 
     task: str
@@ -98,6 +130,7 @@ class RunReport:
     tool_final_error_m: float
     max_torque_ratio: tuple[float, ...]
     obstacle: CollisionVerdict | None
+    obstacles: tuple[ObstacleClearance, ...]
     min_clearance_m: float | None
     min_clearance_time_s: float | None
     self_collisions: tuple[ContactPair, ...]
@@ -105,7 +138,7 @@ class RunReport:
     healthy: bool
     warnings: dict[str, int] = field(default_factory=dict)
     diverged_at_s: float | None = None
-    extra: dict[str, float] = field(default_factory=dict)
+    metrics: RobotMetrics | None = None
 
     @property
     def collided(self) -> bool:

@@ -44,7 +44,7 @@ def mp4_writer(dest: str | os.PathLike[str], fps: float) -> Iterator[FrameSink]:
     with atomic_path(dest) as tmp:
         writer = imageio.get_writer(
             tmp,
-            format="FFMPEG",  # type: ignore[arg-type]
+            format="FFMPEG",
             fps=fps,
             codec="libx264",
             pixelformat="yuv420p",

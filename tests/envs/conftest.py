@@ -15,7 +15,7 @@ from collections.abc import Iterator
 import gymnasium as gym
 import pytest
 
-import lynxsim  # noqa: F401  (registers the envs)
+import lynxsim.envs  # noqa: F401  (registers the envs)
 from lynxsim.envs import ENV_IDS
 
 ENV_MODES = [(env_id, control) for env_id in ENV_IDS for control in ("tool", "joint")]

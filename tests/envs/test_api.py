@@ -16,7 +16,7 @@ from lynxsim.envs import PickAndPlaceEnv, ReachEnv
 from lynxsim.envs.base import READY_TOOL_POSE, check_control_dt
 from lynxsim.envs.control import TargetStatus
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.sim import ObstacleSpec
+from lynxsim.scene import REPORT_CYLINDER, TABLE, Cylinder
 from tests.envs.conftest import ENV_MODE_IDS, ENV_MODES
 from tests.helpers import assert_close
 
@@ -237,18 +237,18 @@ def test_arm_obstacle_contact_is_reported_penalised_and_can_terminate():
 
 
 def test_no_obstacle_means_no_collisions_and_a_moved_one_is_avoided():
-    env = gym.make("LynxPickAndPlace-v0", control="joint", obstacle=None)
+    env = gym.make("LynxPickAndPlace-v0", control="joint", obstacles=())
     env.reset(seed=0)
-    assert env.unwrapped.ids.obstacle_geom is None
+    assert env.unwrapped.ids.obstacle_geoms == ()
     for _ in range(40):
         *_, info = env.step(np.array([1.0, 0, 0, 0, 0, 1.0]))
         assert not info["collision"]
-    moved = ObstacleSpec(center=(0.2, -0.1), radius=0.03, top_z=0.3)
-    env = PickAndPlaceEnv(obstacle=moved)
+    moved = Cylinder("cylinder", (0.2, -0.1, TABLE.top_z), 0.03, 0.3 - TABLE.top_z)
+    env = PickAndPlaceEnv(obstacles=(moved,))
     for seed in range(20):
         obs, _ = env.reset(seed=seed)
         for p in (obs["achieved_goal"], obs["desired_goal"]):
-            assert math.dist(p[:2], moved.center) > moved.radius + 0.03
+            assert math.dist(p[:2], moved.position[:2]) > moved.radius + 0.03
 
 
 def test_unreachable_tool_targets_are_held_not_raised():
@@ -307,7 +307,8 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
         ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'default'"),
         ({"distance_threshold": 0.0}, "distance_threshold must be > 0 m"),
         ({"collision_penalty": -1.0}, "collision_penalty must be >= 0"),
-        ({"obstacle": (0.1, 0.1)}, "obstacle must be an ObstacleSpec or None"),
+        ({"obstacles": (0.1, 0.1)}, "obstacles must be a sequence of Cylinder, Box or Sphere"),
+        ({"obstacles": REPORT_CYLINDER}, "obstacles must be a sequence of Cylinder, Box or Sphere"),
         ({"goal_in_air_prob": 1.5}, r"goal_in_air_prob must be in \[0, 1\]"),
         ({"position_step": 0.0}, "position_step must be a positive number"),
         ({"camera": "side"}, "no camera named 'side'"),

@@ -31,7 +31,7 @@ def test_pick_and_place_expert_succeeds_without_touching_the_obstacle():
 
 
 def test_pick_and_place_expert_needs_no_obstacle_knowledge():
-    summary = evaluate("LynxPickAndPlace-v0", "expert", 5, seed=2000, env_kwargs={"obstacle": None})
+    summary = evaluate("LynxPickAndPlace-v0", "expert", 5, seed=2000, env_kwargs={"obstacles": ()})
     assert summary.success_rate == 1.0
 
 

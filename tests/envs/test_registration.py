@@ -1,24 +1,94 @@
-"""Registration: ``import lynxsim`` registers the envs without importing MuJoCo."""
+"""Registration: ``import lynxsim.envs`` registers the envs; ``import lynxsim`` stays light."""
 
 from __future__ import annotations
 
 import subprocess
 import sys
+import textwrap
 
 import gymnasium as gym
 import numpy as np
+import pytest
 
 import lynxsim.envs
 from lynxsim.envs import ENV_IDS, PickAndPlaceEnv, ReachEnv
 
+LIGHT_MODULES = [
+    "lynxsim",
+    "lynxsim.arm",
+    "lynxsim.rrr",
+    "lynxsim.traj",
+    "lynxsim.scene",
+    "lynxsim.tasks",
+]
+"""Modules whose import loads neither MuJoCo nor Gymnasium."""
 
-def test_import_lynxsim_registers_envs_and_stays_light():
-    code = (
-        "import sys, gymnasium, lynxsim; "
-        "ids = {'LynxPickAndPlace-v0', 'LynxReach-v0'}; "
-        "sys.exit(0 if ids <= set(gymnasium.registry) and 'mujoco' not in sys.modules else 1)"
+
+def _run_python(code: str) -> subprocess.CompletedProcess[str]:
+    """Run ``code`` in a fresh interpreter (an empty ``sys.modules`` and gym registry)."""
+    return subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
     )
-    assert subprocess.run([sys.executable, "-c", code], check=False).returncode == 0
+
+
+@pytest.mark.parametrize("module", LIGHT_MODULES)
+def test_math_and_task_modules_import_neither_mujoco_nor_gymnasium(module):
+    run = _run_python(
+        f"""
+        import sys, {module}
+        print(sorted(m for m in ("mujoco", "gymnasium") if m in sys.modules))
+        """
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip() == "[]"
+
+
+def test_import_lynxsim_registers_nothing():
+    run = _run_python(
+        """
+        import gymnasium as gym, lynxsim
+        print(sorted(i for i in gym.registry if i.startswith("Lynx")))
+        """
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip() == "[]"
+
+
+def test_import_lynxsim_envs_registers_them_without_mujoco():
+    run = _run_python(
+        """
+        import sys
+        import gymnasium as gym
+        import lynxsim.envs
+
+        gym.register_envs(lynxsim.envs)
+        assert {"LynxPickAndPlace-v0", "LynxReach-v0"} <= set(gym.registry)
+        assert "mujoco" not in sys.modules
+        env = gym.make("LynxPickAndPlace-v0")
+        env.reset(seed=0)
+        print(type(env.unwrapped).__name__)
+        """
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip() == "PickAndPlaceEnv"
+
+
+def test_module_colon_id_makes_without_an_import():
+    run = _run_python(
+        """
+        import gymnasium as gym
+
+        env = gym.make("lynxsim.envs:LynxPickAndPlace-v0")
+        env.reset(seed=0)
+        print(type(env.unwrapped).__name__, env.spec.max_episode_steps)
+        """
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip() == "PickAndPlaceEnv 200"
 
 
 def test_acceptance_make_and_reset():

@@ -45,7 +45,7 @@ def test_async_vector_env_with_the_default_start_method():
     # A fresh interpreter: no GL context exists before the workers fork.
     code = textwrap.dedent(
         """
-        import gymnasium as gym, lynxsim
+        import gymnasium as gym, lynxsim.envs
         env = gym.make_vec("LynxPickAndPlace-v0", num_envs=2, vectorization_mode="async")
         env.reset(seed=0)
         for _ in range(5):
@@ -60,7 +60,7 @@ def test_async_vector_env_with_the_default_start_method():
 def test_forking_after_rendering_raises_instead_of_hanging():
     code = textwrap.dedent(
         """
-        import gymnasium as gym, lynxsim
+        import gymnasium as gym, lynxsim.envs
         parent = gym.make("LynxReach-v0", render_mode="rgb_array")
         parent.reset(seed=0)
         parent.render()

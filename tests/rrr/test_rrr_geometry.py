@@ -129,7 +129,7 @@ def test_every_name_in_all_resolves():
 
 def test_kinematics_do_not_import_mujoco_or_matplotlib():
     code = (
-        "import sys, lynxsim.rrr, lynxsim.rrr.report; "
+        "import sys, lynxsim.rrr, lynxsim.reproduce.rrr_formulas; "
         "print('mujoco' in sys.modules, 'matplotlib' in sys.modules)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

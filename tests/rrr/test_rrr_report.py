@@ -6,14 +6,14 @@ import math
 
 import numpy as np
 
-from lynxsim.rrr import RRR_ROBOT, ik
-from lynxsim.rrr.report import (
+from lynxsim.reproduce.rrr_formulas import (
     FIGURE20_POSES,
     REPORT_MODE,
     figure20_table,
     format_figure20_table,
     report_leg_spans,
 )
+from lynxsim.rrr import RRR_ROBOT, ik
 from tests.helpers import assert_close
 
 

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from lynxsim.rrr import RRR_ROBOT, ik, singularity_measures
-from lynxsim.sim.rrr_scene import RRRIds, load_rrr_model, load_rrr_scene
+from lynxsim.sim.rrr.model import RRRIds, load_rrr_model, load_rrr_scene
 
 FIGURE20_A = np.array([0.200, 0.150, 0.0])
 """Figure 20 (a): reachable, links clear in every mode [m, m, rad]."""
@@ -31,13 +31,13 @@ FIGURE20_F = np.array([0.200, 0.210, math.radians(40.0)])
 
 @pytest.fixture(scope="session")
 def rrr_scene() -> mujoco.MjModel:
-    """The scene at ``home`` (``models/rrr/scene.xml``)."""
+    """The scene at ``home`` (``lynxsim/models/rrr/scene.xml``)."""
     return load_rrr_scene()
 
 
 @pytest.fixture(scope="session")
 def rrr_model() -> mujoco.MjModel:
-    """The robot alone (``models/rrr/rrr.xml``)."""
+    """The robot alone (``lynxsim/models/rrr/rrr.xml``)."""
     return load_rrr_model()
 
 

@@ -11,7 +11,7 @@ import pytest
 from lynxsim.errors import InvalidInputError, UnreachablePlatformPoseError
 from lynxsim.rrr import RRR_ROBOT, ik, leg_points, platform_joints
 from lynxsim.rrr.path import actuated_window, wrap_to_window
-from lynxsim.sim.rrr_scene import (
+from lynxsim.sim.rrr.model import (
     HOME_MODE,
     HOME_POSE,
     LEG_BASE_JOINTS,
@@ -23,7 +23,7 @@ from lynxsim.sim.rrr_scene import (
     loop_closure_errors,
     platform_pose,
 )
-from lynxsim.sim.rrr_verify import interference_at, settled_mode
+from lynxsim.sim.rrr.verify import interference_at, settled_mode
 from tests.helpers import assert_close
 from tests.model_checks import (
     assert_every_element_named,
@@ -43,7 +43,7 @@ SIM_DURATION_S = 1.0
 CONTROL_PERIOD_S = 0.05
 """How often the random controls change while stepping the scene [s]."""
 HS805BB_STALL_TORQUE_NM = 2.42
-"""HS-805BB stall torque at 6 V, 24.7 kg·cm (models/lynx_arm/README.md) [N·m]."""
+"""HS-805BB stall torque at 6 V, 24.7 kg·cm (lynxsim/models/lynx_arm/README.md) [N·m]."""
 HS805BB_KP = 555.0
 """kp = stall torque / 0.25 deg, as the arm's servos [N·m/rad]."""
 

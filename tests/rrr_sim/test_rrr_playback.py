@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 from pathlib import Path
@@ -11,13 +12,13 @@ import numpy as np
 import pytest
 
 from lynxsim.cli import main
-from lynxsim.demo_rrr import FIGURE20_FILE, run_rrr_demo
+from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import platform_path
 from lynxsim.sim.render import Quality, RenderSettings
-from lynxsim.sim.rrr_playback import RRR_EXTRA_KEYS, play_rrr
-from lynxsim.sim.rrr_scene import HOME_POSE, load_rrr_scene
-from lynxsim.sim.rrr_task import path_from_task, run_rrr_path
+from lynxsim.sim.rrr.model import HOME_POSE, load_rrr_scene
+from lynxsim.sim.rrr.playback import RRRMetrics, play_rrr
+from lynxsim.sim.rrr.task import path_from_task, run_rrr_path
 from lynxsim.tasks import load_task
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_F
 
@@ -37,6 +38,22 @@ TRACKING_TOL_RAD = math.radians(0.2)
 """Platform orientation against the commanded path [rad]."""
 FINAL_TOL_M = 0.5e-3
 FINAL_TOL_RAD = math.radians(0.1)
+RRR_METRIC_NAMES = (
+    "working_mode",
+    "loop_closure_max_m",
+    "loop_closure_final_m",
+    "platform_position_max_error_m",
+    "platform_position_rms_error_m",
+    "platform_position_final_error_m",
+    "platform_orientation_max_error_rad",
+    "platform_orientation_rms_error_rad",
+    "platform_orientation_final_error_rad",
+    "link_min_clearance_m",
+    "path_min_abs_parallel",
+    "path_min_serial",
+    "base_speed_max_rad_s",
+)
+"""The 3-RRR figures of a run report, in order (:class:`RRRMetrics`)."""
 SMALL_RENDER = RenderSettings(width=160, height=128, camera="top", quality=Quality.FAST, fps=20)
 
 SHORT_RRR_TASK = """
@@ -70,17 +87,20 @@ def test_task_playback_keeps_loops_closed_and_tracks_the_path(task_report):
     assert r.healthy
     assert not r.warnings
     assert r.diverged_at_s is None
-    assert tuple(r.extra) == RRR_EXTRA_KEYS
-    assert r.extra["working_mode"] == 7
-    assert r.extra["loop_closure_max_m"] <= PLAYBACK_LOOP_TOL_M
-    assert r.extra["loop_closure_final_m"] <= REST_LOOP_TOL_M
-    assert r.extra["platform_position_max_error_m"] <= TRACKING_TOL_M
-    assert r.extra["platform_orientation_max_error_rad"] <= TRACKING_TOL_RAD
-    assert r.extra["platform_position_final_error_m"] <= FINAL_TOL_M
-    assert r.extra["platform_orientation_final_error_rad"] <= FINAL_TOL_RAD
+    m = r.metrics
+    assert isinstance(m, RRRMetrics)
+    assert tuple(f.name for f in dataclasses.fields(m)) == RRR_METRIC_NAMES
+    assert m.working_mode == 7
+    assert m.loop_closure_max_m <= PLAYBACK_LOOP_TOL_M
+    assert m.loop_closure_final_m <= REST_LOOP_TOL_M
+    assert m.platform_position_max_error_m <= TRACKING_TOL_M
+    assert m.platform_orientation_max_error_rad <= TRACKING_TOL_RAD
+    assert m.platform_position_final_error_m <= FINAL_TOL_M
+    assert m.platform_orientation_final_error_rad <= FINAL_TOL_RAD
     assert r.self_collisions == ()
-    assert r.extra["link_min_clearance_m"] > 0.02
+    assert m.link_min_clearance_m > 0.02
     assert r.obstacle is None
+    assert r.obstacles == ()
     assert max(r.max_torque_ratio) < 1.0, "the servos never saturate"
     json.loads(json.dumps(r.to_dict()))
 
@@ -91,8 +111,8 @@ def test_link_interference_during_a_playback_is_a_self_collision():
     r = play_rrr(path, 7, task="into_interference", settle_s=0.2).report
     pairs = {(p.geom1, p.geom2) for p in r.self_collisions}
     assert ("leg3_proximal_collision", "platform_collision23") in pairs
-    assert r.extra["link_min_clearance_m"] < 0.0
-    assert r.extra["platform_position_final_error_m"] > FINAL_TOL_M, "the links block the motion"
+    assert r.metrics.link_min_clearance_m < 0.0
+    assert r.metrics.platform_position_final_error_m > FINAL_TOL_M, "the links block the motion"
     assert r.healthy
 
 
@@ -117,19 +137,19 @@ def test_video_is_recorded_at_the_video_rate_of_simulated_time(tmp_path):
     assert frames[-1].shape == (128, 160, 3)
 
 
-def test_cli_play_runs_rrr_tasks_and_prints_the_extra_metrics(tmp_path, capsys):
+def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys):
     task = tmp_path / "short_rrr.toml"
     task.write_text(SHORT_RRR_TASK)
     assert main(["play", str(task), "--no-video", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
     assert report["trajectory"] == "quintic"
-    assert set(report["extra"]) == set(RRR_EXTRA_KEYS)
-    assert report["extra"]["working_mode"] == 7
+    assert set(report["metrics"]) == set(RRR_METRIC_NAMES)
+    assert report["metrics"]["working_mode"] == 7
     assert main(["play", str(task), "--no-video", "--quiet", "--mode", "0"]) == 0
     out = capsys.readouterr().out
-    assert "loop_closure_max: " in out
-    assert "working_mode: 0" in out
-    assert "platform_orientation_max_error: " in out
+    assert "loop closure: max " in out
+    assert "working mode: 0" in out
+    assert "platform orientation error: max " in out
 
 
 def test_cli_play_refuses_types_the_rrr_does_not_plan(tmp_path, capsys):

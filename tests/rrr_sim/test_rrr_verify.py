@@ -9,14 +9,10 @@ import numpy as np
 import pytest
 
 from lynxsim.errors import UnreachablePlatformPoseError
+from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
+from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE
 from lynxsim.rrr import RRR_ROBOT
-from lynxsim.rrr.report import FIGURE20_POSES, REPORT_MODE
-from lynxsim.sim.rrr_verify import (
-    check_pose,
-    figure20_simulation,
-    format_figure20_simulation,
-    pull_toward,
-)
+from lynxsim.sim.rrr.verify import check_pose, pull_toward
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_E, FIGURE20_F, well_conditioned_poses
 
 SETTLE_POSITION_TOL_M = 0.5e-3

@@ -13,12 +13,12 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco
 import pytest
 
-from lynxsim.sim import SceneIds, load_arm_model, load_arm_scene
+from lynxsim.sim.arm.model import SceneIds, load_arm_model, load_arm_scene
 
 
 @pytest.fixture(scope="session")
 def arm_model() -> mujoco.MjModel:
-    """The robot alone (``models/lynx_arm/lynx_arm.xml``)."""
+    """The robot alone (``lynxsim/models/lynx_arm/lynx_arm.xml``)."""
     return load_arm_model()
 
 

@@ -11,14 +11,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lynxsim.arm import LYNX_ARM, fk, frame_transforms
-from lynxsim.reference import TABLE4
-from lynxsim.sim import (
+from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.scene import REPORT_SCENE, TABLE, Cylinder, Scene
+from lynxsim.sim.arm.model import (
     ARM_JOINTS,
     FINGER_JOINTS,
     FRAME_SITES,
     GRIPPER_TENDON,
     HOME_KEY,
-    ObstacleSpec,
     SceneIds,
     load_arm_model,
     load_arm_scene,
@@ -55,7 +55,7 @@ STALL_TORQUE_6V_KGF_CM = {
     "wrist_pitch": 9.6,  # HS-645MG
     "wrist_roll": 4.8,  # HS-225MG
 }
-"""Stall torques at 6.0 V from the Hitec datasheets (models/lynx_arm/README.md)."""
+"""Stall torques at 6.0 V from the Hitec datasheets (lynxsim/models/lynx_arm/README.md)."""
 GRIPPER_STALL_TORQUE_6V_KGF_CM = 4.1
 """HS-422 stall torque at 6.0 V [kg·cm]."""
 GRIPPER_OPENING_M = 0.03
@@ -70,9 +70,11 @@ OBJ = mujoco.mjtObj
 SCENE_VARIANTS = {
     "robot": load_arm_model,
     "scene": load_arm_scene,
-    "no_obstacle": lambda: load_arm_scene(None),
-    "moved_obstacle": lambda: load_arm_scene(ObstacleSpec((0.2, -0.1), 0.03, 0.25)),
-    "no_cube": lambda: load_arm_scene(cube=False),
+    "no_obstacle": lambda: load_arm_scene(REPORT_SCENE.without_obstacles()),
+    "moved_obstacle": lambda: load_arm_scene(
+        Scene((Cylinder("cylinder", (0.2, -0.1, TABLE.top_z), 0.03, 0.25 - TABLE.top_z),))
+    ),
+    "no_cube": lambda: load_arm_scene(REPORT_SCENE.without_cube()),
 }
 
 

@@ -10,17 +10,18 @@ import pytest
 
 from lynxsim.arm import ik_one
 from lynxsim.errors import InvalidInputError
-from lynxsim.reference import TABLE4
+from lynxsim.reproduce.arm_tables import TABLE4
 from lynxsim.resources import model_path
-from lynxsim.sim import (
+from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE, TABLE, Box, Cylinder, Scene, Sphere
+from lynxsim.sim.arm.model import (
     COLLISION_GROUP,
+    CUBE_BODY,
+    CUBE_GEOM,
     GRIPPER_ACTUATOR,
     HOME_KEY,
-    OBSTACLE_GEOM,
-    REPORT_OBSTACLE,
     SCENE_XML,
+    TABLE_GEOM,
     VISUAL_GROUP,
-    ObstacleSpec,
     SceneIds,
     load_arm_scene,
     load_arm_spec,
@@ -60,12 +61,20 @@ def _pose(model: mujoco.MjModel, data: mujoco.MjData, ids: SceneIds, q: np.ndarr
     mujoco.mj_forward(model, data)
 
 
+def _cylinder_geom(model: mujoco.MjModel, ids: SceneIds) -> int:
+    """The geom of the report's cylinder: the scene's only obstacle, named after it."""
+    g = mujoco.mj_name2id(model, int(mujoco.mjtObj.mjOBJ_GEOM), REPORT_CYLINDER.name)
+    assert g >= 0
+    assert ids.obstacle_geoms == (g,)
+    return int(g)
+
+
 def _obstacle_clearance(model: mujoco.MjModel, data: mujoco.MjData, ids: SceneIds) -> float:
     """Least signed distance between the arm's collision geoms and the obstacle [m]."""
-    assert ids.obstacle_geom is not None
+    obstacle = _cylinder_geom(model, ids)
     fromto = np.zeros(6)
     return min(
-        mujoco.mj_geomDistance(model, data, g, ids.obstacle_geom, DISTMAX_M, fromto)
+        mujoco.mj_geomDistance(model, data, g, obstacle, DISTMAX_M, fromto)
         for g in ids.arm_collision_geoms
     )
 
@@ -79,18 +88,31 @@ def _via_joints() -> list[np.ndarray]:
 
 
 def test_default_scene_is_the_shipped_file():
+    # The shipped file holds no obstacle (they are built from the scene); its
+    # table and cube are the default scene's, so building them changes nothing.
     shipped = mujoco.MjModel.from_xml_path(str(model_path(SCENE_XML)))
     built = load_arm_scene()
-    g_shipped = mujoco.mj_name2id(shipped, int(mujoco.mjtObj.mjOBJ_GEOM), OBSTACLE_GEOM)
-    g_built = mujoco.mj_name2id(built, int(mujoco.mjtObj.mjOBJ_GEOM), OBSTACLE_GEOM)
-    assert_close(built.geom_size[g_built], shipped.geom_size[g_shipped], atol=SPEC_TOL_M)
-    assert_close(built.geom_pos[g_built], shipped.geom_pos[g_shipped], atol=SPEC_TOL_M)
+    assert SceneIds.from_model(shipped).obstacle_geoms == ()
+    assert [built.geom(g).name for g in SceneIds.from_model(built).obstacle_geoms] == [
+        REPORT_CYLINDER.name
+    ]
+    geom, body = int(mujoco.mjtObj.mjOBJ_GEOM), int(mujoco.mjtObj.mjOBJ_BODY)
+    for name in (TABLE_GEOM, CUBE_GEOM):
+        g_shipped = mujoco.mj_name2id(shipped, geom, name)
+        g_built = mujoco.mj_name2id(built, geom, name)
+        assert_close(built.geom_size[g_built], shipped.geom_size[g_shipped], atol=SPEC_TOL_M)
+        assert_close(built.geom_pos[g_built], shipped.geom_pos[g_shipped], atol=SPEC_TOL_M)
+    b_shipped = mujoco.mj_name2id(shipped, body, CUBE_BODY)
+    b_built = mujoco.mj_name2id(built, body, CUBE_BODY)
+    assert_close(built.body_pos[b_built], shipped.body_pos[b_shipped], atol=SPEC_TOL_M)
+    assert_close(built.body_quat[b_built], shipped.body_quat[b_shipped], atol=SPEC_TOL_M)
 
 
 def test_report_obstacle_stands_on_the_table_up_to_400_mm(scene_model, scene_ids):
-    assert ObstacleSpec(center=(0.15, 0.15), radius=0.04, top_z=0.4) == REPORT_OBSTACLE
-    g = scene_ids.obstacle_geom
-    assert g is not None
+    expected = Cylinder("cylinder", (0.15, 0.15, TABLE.top_z), 0.04, 0.4 - TABLE.top_z)
+    assert expected == REPORT_CYLINDER
+    assert REPORT_SCENE.obstacles == (REPORT_CYLINDER,)
+    g = _cylinder_geom(scene_model, scene_ids)
     assert scene_model.geom_type[g] == int(mujoco.mjtGeom.mjGEOM_CYLINDER)
     radius, half_height = scene_model.geom_size[g, :2]
     x, y, z = scene_model.geom_pos[g]
@@ -100,31 +122,68 @@ def test_report_obstacle_stands_on_the_table_up_to_400_mm(scene_model, scene_ids
 
 
 def test_obstacle_can_be_moved_resized_or_removed():
-    spec = ObstacleSpec(center=(0.2, -0.1), radius=0.03, top_z=0.25)
-    model = load_arm_scene(spec)
-    g = SceneIds.from_model(model).obstacle_geom
-    assert g is not None
+    moved = Cylinder("cylinder", (0.2, -0.1, TABLE.top_z), 0.03, 0.25 - TABLE.top_z)
+    model = load_arm_scene(Scene((moved,)))
+    g = _cylinder_geom(model, SceneIds.from_model(model))
     radius, half_height = model.geom_size[g, :2]
     assert_close([radius, *model.geom_pos[g, :2]], [0.03, 0.2, -0.1], atol=SPEC_TOL_M)
     assert_close(model.geom_pos[g, 2] + half_height, 0.25, atol=SPEC_TOL_M)
-    assert SceneIds.from_model(load_arm_scene(None)).obstacle_geom is None
-    assert SceneIds.from_model(load_arm_scene(cube=False)).cube_geom is None
+    assert_close(model.geom_pos[g, 2] - half_height, TABLE.top_z, atol=SPEC_TOL_M)
+    no_obstacle = load_arm_scene(REPORT_SCENE.without_obstacles())
+    assert SceneIds.from_model(no_obstacle).obstacle_geoms == ()
+    assert SceneIds.from_model(load_arm_scene(REPORT_SCENE.without_cube())).cube_geom is None
+
+
+_BOTTOM = (0.1, 0.1, TABLE.top_z)
+"""Bottom-face centre of the obstacles of the rejection tests [m]."""
 
 
 @pytest.mark.parametrize(
-    ("kwargs", "message"),
+    ("make", "message"),
     [
-        ({"center": (0.1, 0.1), "radius": 0.0, "top_z": 0.4}, "radius must be positive"),
-        ({"center": (0.1, 0.1), "radius": -0.04, "top_z": 0.4}, "radius must be positive"),
-        ({"center": (0.1, 0.1), "radius": 0.04, "top_z": 0.0}, "top_z must be above"),
-        ({"center": (0.1, math.nan), "radius": 0.04, "top_z": 0.4}, "finite"),
-        ({"center": (0.1, 0.1, 0.0), "radius": 0.04, "top_z": 0.4}, "finite"),
+        (lambda: Cylinder("c", _BOTTOM, 0.0, 0.4), "radius must be positive"),
+        (lambda: Cylinder("c", _BOTTOM, -0.04, 0.4), "radius must be positive"),
+        (lambda: Cylinder("c", _BOTTOM, 0.04, 0.0), "height must be positive"),
+        (lambda: Cylinder("c", _BOTTOM, 0.04, -0.1), "height must be positive"),
+        (lambda: Cylinder("c", (0.1, math.nan, TABLE.top_z), 0.04, 0.4), "finite"),
+        (lambda: Cylinder("c", (0.1, 0.1), 0.04, 0.4), "tuple of 3 numbers"),
+        (lambda: Cylinder("c", _BOTTOM, math.inf, 0.4), "finite"),
+        (lambda: Cylinder("", _BOTTOM, 0.04, 0.4), "non-empty printable"),
+        (lambda: Box("b", _BOTTOM, (0.1, 0.0, 0.1)), r"size\[1\] must be positive"),
+        (lambda: Box("b", _BOTTOM, (0.1, 0.1, 0.1), yaw=math.nan), "yaw must be finite"),
+        (lambda: Sphere("s", _BOTTOM, -0.02), "radius must be positive"),
+        (lambda: Sphere("s", (math.nan, 0.1, 0.1), 0.02), "finite"),
     ],
-    ids=["zero_radius", "negative_radius", "flat", "nan_centre", "three_coordinates"],
+    ids=[
+        "zero_radius",
+        "negative_radius",
+        "flat",
+        "negative_height",
+        "nan_centre",
+        "two_coordinates",
+        "infinite_radius",
+        "empty_name",
+        "flat_box",
+        "nan_yaw",
+        "negative_sphere",
+        "nan_sphere",
+    ],
 )
-def test_invalid_obstacle_is_rejected(kwargs, message):
+def test_invalid_obstacle_is_rejected(make, message):
     with pytest.raises(InvalidInputError, match=message):
-        ObstacleSpec(**kwargs)
+        make()
+
+
+def test_scene_rejects_duplicate_names_and_obstacles_over_the_base_or_the_cube():
+    twin = Sphere("cylinder", (0.3, -0.2, 0.2), 0.02)
+    with pytest.raises(InvalidInputError, match="two obstacles are named 'cylinder'"):
+        Scene((REPORT_CYLINDER, twin))
+    with pytest.raises(InvalidInputError, match="encloses the robot's base"):
+        Scene((Sphere("s", (0.0, 0.0, 0.05), 0.1),))
+    with pytest.raises(InvalidInputError, match="encloses the cube's start"):
+        Scene((Box("b", (0.0, 0.3, TABLE.top_z), (0.1, 0.1, 0.1)),))
+    # Without the cube, the same box is fine.
+    assert Scene((Box("b", (0.0, 0.3, TABLE.top_z), (0.1, 0.1, 0.1)),), cube=None).cube is None
 
 
 def test_geom_groups_and_contact_bits(scene_model, scene_ids):
@@ -138,7 +197,8 @@ def test_geom_groups_and_contact_bits(scene_model, scene_ids):
             pytest.fail(f"collision geom {scene_model.geom(g).name} is not part of the arm")
         if scene_model.geom_group[g] == VISUAL_GROUP:
             assert not collides, scene_model.geom(g).name
-    for other in (scene_ids.obstacle_geom, scene_ids.table_geom, scene_ids.cube_geom):
+    assert len(scene_ids.obstacle_geoms) == 1
+    for other in (*scene_ids.obstacle_geoms, scene_ids.table_geom, scene_ids.cube_geom):
         assert other is not None
         assert scene_model.geom_conaffinity[other] & 1
         assert scene_model.geom_contype[other] & 1
@@ -161,7 +221,8 @@ def test_cube_sits_on_the_table_with_its_centre_at_p1(scene_model, scene_ids, sc
 def test_via_points_clear_the_obstacle(scene_model, scene_ids, scene_data, index):
     _pose(scene_model, scene_data, scene_ids, _via_joints()[index])
     pairs = _contact_pairs(scene_model, scene_data)
-    assert not any(scene_ids.obstacle_geom in pair for pair in pairs)
+    obstacle = _cylinder_geom(scene_model, scene_ids)
+    assert not any(obstacle in pair for pair in pairs)
     assert _obstacle_clearance(scene_model, scene_data, scene_ids) > VIA_CLEARANCE_MIN_M
 
 
@@ -169,10 +230,11 @@ def test_plain_task_p2_to_p3_passes_through_the_obstacle(scene_model, scene_ids,
     q2, q3 = (np.radians([*TABLE4[i].q_deg, 0.0]) for i in (1, 2))
     _pose(scene_model, scene_data, scene_ids, 0.5 * (q2 + q3))
     arm = set(scene_ids.arm_collision_geoms)
+    obstacle = _cylinder_geom(scene_model, scene_ids)
     hits = {
         pair
         for pair in _contact_pairs(scene_model, scene_data)
-        if scene_ids.obstacle_geom in pair and (arm & set(pair))
+        if obstacle in pair and (arm & set(pair))
     }
     assert hits
     assert _obstacle_clearance(scene_model, scene_data, scene_ids) < 0.0

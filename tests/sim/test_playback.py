@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 
 from lynxsim.errors import LimitViolationError
-from lynxsim.sim import load_arm_scene
-from lynxsim.sim.arm_playback import arm_binding, play_arm
-from lynxsim.sim.arm_task import run_arm_trajectory
-from lynxsim.sim.playback import play
+from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
+from lynxsim.sim.arm.model import load_arm_scene
+from lynxsim.sim.arm.playback import arm_binding, play_arm
+from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sim.rollout import rollout
 from lynxsim.tasks import load_task
 from lynxsim.traj import ArmPose, TrajectoryKind, build_trajectory, generate
 
@@ -26,6 +27,10 @@ MAX_TOOL_ERROR_M = 5e-3
 """Issue 4, item 4: the tool's largest tracking error on the quintic pick-and-place."""
 FINAL_TOOL_ERROR_M = 1e-3
 """Issue 4, item 4: the tool's error after 0.5 s of settling."""
+NO_OBSTACLE = REPORT_SCENE.without_obstacles()
+"""Table and cube, no obstacle."""
+NO_CUBE = REPORT_SCENE.without_cube()
+"""Table and the report's cylinder, no cube."""
 
 
 @pytest.fixture(scope="module")
@@ -36,7 +41,7 @@ def pick_and_place():
 def test_quintic_pick_and_place_tracks_within_bounds(pick_and_place):
     trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
     assert trajectory.segment_durations.tolist() == [1.0, 1.0, 1.0, 1.0]
-    report = run_arm_trajectory(trajectory, task="pick_and_place", obstacle=None).report
+    report = run_arm_trajectory(trajectory, task="pick_and_place", scene=NO_OBSTACLE).report
     assert report.tool_max_error_m <= MAX_TOOL_ERROR_M
     assert report.tool_final_error_m <= FINAL_TOOL_ERROR_M
     assert report.settle_s == pytest.approx(0.5)
@@ -49,12 +54,13 @@ def test_quintic_pick_and_place_tracks_within_bounds(pick_and_place):
 @pytest.mark.parametrize("kind", list(TrajectoryKind), ids=[k.value for k in TrajectoryKind])
 def test_plain_task_hits_the_obstacle_between_p2_and_p3(pick_and_place, kind):
     trajectory = build_trajectory(pick_and_place, kind)
-    report = play_arm(load_arm_scene(cube=False), trajectory, task="pick_and_place").report
+    report = play_arm(load_arm_scene(NO_CUBE), trajectory, task="pick_and_place").report
     assert report.collided
     t_p2, t_p3 = trajectory.waypoint_times[1:3]
     assert t_p2 < report.obstacle.first_time_s < t_p3
     robot_geom, obstacle_geom = report.obstacle.first_pair
-    assert obstacle_geom == "obstacle"
+    assert obstacle_geom == REPORT_CYLINDER.name
+    assert report.obstacle.first_obstacle == REPORT_CYLINDER.name
     assert robot_geom.endswith("_collision")
     assert report.obstacle.max_penetration_m > 0.0
     assert report.min_clearance_m < 0.0
@@ -64,7 +70,8 @@ def test_plain_task_hits_the_obstacle_between_p2_and_p3(pick_and_place, kind):
 @pytest.mark.parametrize("cube", [False, True], ids=["arm", "arm_and_cube"])
 def test_via_points_with_straight_lines_clear_the_obstacle(cube):
     trajectory = build_trajectory(load_task(VIA_POINTS), TrajectoryKind.LINE)
-    report = run_arm_trajectory(trajectory, task="via", cube=cube).report
+    scene = REPORT_SCENE if cube else NO_CUBE
+    report = run_arm_trajectory(trajectory, task="via", scene=scene).report
     assert not report.collided
     assert report.obstacle.steps_in_contact == 0
     # The report's via points pass the cylinder closely but clear it.
@@ -76,16 +83,16 @@ def test_carried_cube_hitting_the_obstacle_is_a_collision(pick_and_place):
     # On the straight line from P2 to P3 the gripped cube reaches the cylinder
     # before any part of the arm does.
     trajectory = build_trajectory(pick_and_place, TrajectoryKind.LINE)
-    with_cube = run_arm_trajectory(trajectory, task="p", cube=True).report
-    arm_only = run_arm_trajectory(trajectory, task="p", cube=False).report
-    assert with_cube.obstacle.first_pair == ("cube", "obstacle")
+    with_cube = run_arm_trajectory(trajectory, task="p", scene=REPORT_SCENE).report
+    arm_only = run_arm_trajectory(trajectory, task="p", scene=NO_CUBE).report
+    assert with_cube.obstacle.first_pair == ("cube", REPORT_CYLINDER.name)
     assert with_cube.obstacle.first_time_s < arm_only.obstacle.first_time_s
     assert "cube" not in {p.geom1 for p in with_cube.floor_contacts + with_cube.self_collisions}
 
 
 def test_contacts_and_clearance_describe_the_same_instant(pick_and_place):
     playback = play_arm(
-        load_arm_scene(cube=False), build_trajectory(pick_and_place, "quintic"), task="p"
+        load_arm_scene(NO_CUBE), build_trajectory(pick_and_place, "quintic"), task="p"
     )
     first_negative = playback.log.time_s[np.argmax(playback.log.clearance_m < 0.0)]
     assert playback.report.obstacle.first_time_s == pytest.approx(first_negative)
@@ -97,37 +104,43 @@ def test_path_far_from_the_obstacle_does_not_touch_it():
         ArmPose((0.0, -0.3, 0.0), -math.pi / 2),
     ]
     trajectory = generate("quintic", poses, 1.0)
-    report = play_arm(load_arm_scene(cube=False), trajectory, task="far").report
+    report = play_arm(load_arm_scene(NO_CUBE), trajectory, task="far").report
     assert not report.collided
     assert report.min_clearance_m > 0.1
 
 
 def test_scene_without_obstacle_never_reports_one(pick_and_place):
     trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
-    report = play_arm(load_arm_scene(obstacle=None, cube=False), trajectory, task="p").report
+    report = play_arm(load_arm_scene(NO_OBSTACLE.without_cube()), trajectory, task="p").report
     assert report.obstacle is None
+    assert report.obstacles == ()
     assert not report.collided
     assert report.min_clearance_m is None
 
 
 def test_commands_outside_the_joint_ranges_are_refused_before_playback():
-    model = load_arm_scene(cube=False)
+    model = load_arm_scene(NO_CUBE)
     data = mujoco.MjData(model)
     q_cmd = np.zeros((100, 5))
     q_cmd[60:, 2] = 0.2  # elbow range is [-145, 0] deg
     with pytest.raises(
         LimitViolationError, match=r"joint 3 \(elbow\) by 11\.459 deg at t = 0\.122"
     ):
-        play(model, data, arm_binding(model), q_cmd, np.zeros((100, 3)), task="t", trajectory="t")
+        rollout(
+            model, data, arm_binding(model), q_cmd, np.zeros((100, 3)), task="t", trajectory="t"
+        )
     assert data.time == 0.0  # nothing was simulated
 
 
 def test_report_round_trips_through_json(tmp_path, pick_and_place):
     trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
-    report = play_arm(load_arm_scene(cube=False), trajectory, task="p").report
+    report = play_arm(load_arm_scene(NO_CUBE), trajectory, task="p").report
     data = json.loads(report.write_json(tmp_path / "r.json").read_text())
     assert data["collided"] is True
-    assert data["obstacle"]["first_pair"][1] == "obstacle"
+    assert data["obstacle"]["first_pair"][1] == REPORT_CYLINDER.name
+    assert data["obstacle"]["first_obstacle"] == REPORT_CYLINDER.name
+    assert [o["name"] for o in data["obstacles"]] == [REPORT_CYLINDER.name]
+    assert data["obstacles"][0]["collided"] is True
     assert len(data["joint_max_error_rad"]) == 5
     assert set(data) >= {
         "tool_max_error_m",

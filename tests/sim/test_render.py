@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.sim import VISUAL_GROUP, load_arm_scene
-from lynxsim.sim.arm_task import run_arm_trajectory
+from lynxsim.sim.arm.model import VISUAL_GROUP, load_arm_scene
+from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import Overlay, Quality, RenderSettings, SceneRenderer
 from lynxsim.sim.video import mp4_writer
 from lynxsim.traj import ArmPose, generate

@@ -1,8 +1,10 @@
-"""The arm's MuJoCo scene: loading it, obstacle variants, and the ids of its parts.
+"""The arm's MuJoCo scene built from a :class:`~lynxsim.scene.Scene`, and the ids of its parts.
 
-The MJCF files in ``models/lynx_arm/`` are the model; this module only edits the
-parsed :class:`mujoco.MjSpec` (never the XML text) to remove or move the obstacle
-and to drop the cube, and resolves the names the rest of lynxsim refers to.
+The MJCF files in ``lynxsim/models/lynx_arm/`` are the robot, the table, the
+cube, lights and cameras; this module edits the parsed :class:`mujoco.MjSpec`
+(never the XML text): it adds one named geom of class ``obstacle`` per obstacle
+of the scene, sets the table and the cube (or removes it), and resolves the
+names the rest of lynxsim refers to.
 """
 
 from __future__ import annotations
@@ -11,11 +13,13 @@ import math
 from dataclasses import dataclass
 
 import mujoco
+import numpy as np
 
 from lynxsim.arm import FRAME_NAMES, LYNX_ARM
 from lynxsim.errors import InvalidInputError
-from lynxsim.reproduce.arm_tables import OBSTACLE
 from lynxsim.resources import model_path
+from lynxsim.scene import REPORT_SCENE, Box, Cylinder, Obstacle, Scene
+from lynxsim.sim.collision import CollisionGroups
 
 __all__ = [
     "ARM_ACTUATORS",
@@ -31,13 +35,11 @@ __all__ = [
     "GRIPPER_ACTUATOR",
     "GRIPPER_TENDON",
     "HOME_KEY",
-    "OBSTACLE_GEOM",
-    "REPORT_OBSTACLE",
+    "OBSTACLE_CLASS",
     "SCENE_XML",
     "TABLE_GEOM",
     "TOOL_SITE",
     "VISUAL_GROUP",
-    "ObstacleSpec",
     "SceneIds",
     "load_arm_model",
     "load_arm_scene",
@@ -66,7 +68,8 @@ FRAME_SITES: tuple[str, ...] = FRAME_NAMES
 """Sites at the origins of the DH frames, named as :data:`lynxsim.arm.FRAME_NAMES`."""
 TOOL_SITE = "tool"
 """Site at the report's tool point; its z axis is the tool axis."""
-OBSTACLE_GEOM = "obstacle"
+OBSTACLE_CLASS = "obstacle"
+"""Default class of the obstacle geoms (material, contacts)."""
 TABLE_GEOM = "table"
 FLOOR_GEOM = "floor"
 CUBE_BODY = "cube"
@@ -76,45 +79,6 @@ VISUAL_GROUP = 2
 """Geom group of the visual geoms (MuJoCo Menagerie convention)."""
 COLLISION_GROUP = 3
 """Geom group of the collision geoms (MuJoCo Menagerie convention)."""
-
-
-@dataclass(frozen=True)
-class ObstacleSpec:
-    """A vertical cylinder standing on the table.
-
-    The cylinder reaches from the table top up to ``top_z``.
-
-    Attributes:
-        center: (x, y) of its axis in the arm's base frame [m].
-        radius: Radius [m], > 0.
-        top_z: Height of its top face above the base plane z = 0 [m], > 0.
-    """
-
-    center: tuple[float, float]
-    radius: float
-    top_z: float
-
-    def __post_init__(self) -> None:
-        if len(self.center) != 2 or not all(
-            math.isfinite(v) for v in (*self.center, self.radius, self.top_z)
-        ):
-            raise InvalidInputError(
-                f"obstacle needs a finite (x, y) centre, radius and top_z, got {self!r}"
-            )
-        if self.radius <= 0.0:
-            raise InvalidInputError(f"obstacle radius must be positive, got {self.radius} m")
-        if self.top_z <= 0.0:
-            raise InvalidInputError(
-                f"obstacle top_z must be above the base plane z = 0, got {self.top_z} m"
-            )
-
-
-REPORT_OBSTACLE = ObstacleSpec(
-    center=(OBSTACLE.center_mm[0] * 1e-3, OBSTACLE.center_mm[1] * 1e-3),
-    radius=OBSTACLE.radius_mm * 1e-3,
-    top_z=OBSTACLE.height_mm * 1e-3,
-)
-"""The report's obstacle: radius 40 mm, axis at (150, 150) mm, 400 mm tall."""
 
 
 def table_top_z(spec: mujoco.MjSpec) -> float:
@@ -129,45 +93,84 @@ def table_top_z(spec: mujoco.MjSpec) -> float:
     return float(table.pos[2] + table.size[2])
 
 
-def load_arm_spec(
-    obstacle: ObstacleSpec | None = REPORT_OBSTACLE, *, cube: bool = True
-) -> mujoco.MjSpec:
-    """Parse the scene and apply a variant, without compiling it.
+def _add_obstacle(spec: mujoco.MjSpec, obstacle: Obstacle) -> None:
+    if spec.geom(obstacle.name) is not None or spec.body(obstacle.name) is not None:
+        raise InvalidInputError(
+            f"obstacle name {obstacle.name!r} is taken by a part of the arm's scene; rename it"
+        )
+    x, y, z = obstacle.position
+    default = spec.find_default(OBSTACLE_CLASS)
+    if isinstance(obstacle, Cylinder):
+        half = 0.5 * obstacle.height
+        spec.worldbody.add_geom(
+            default,
+            name=obstacle.name,
+            type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+            size=[obstacle.radius, half, 0.0],
+            pos=[x, y, z + half],
+        )
+    elif isinstance(obstacle, Box):
+        half_z = 0.5 * obstacle.size[2]
+        spec.worldbody.add_geom(
+            default,
+            name=obstacle.name,
+            type=mujoco.mjtGeom.mjGEOM_BOX,
+            size=[0.5 * obstacle.size[0], 0.5 * obstacle.size[1], half_z],
+            pos=[x, y, z + half_z],
+            quat=[math.cos(0.5 * obstacle.yaw), 0.0, 0.0, math.sin(0.5 * obstacle.yaw)],
+        )
+    else:
+        spec.worldbody.add_geom(
+            default,
+            name=obstacle.name,
+            type=mujoco.mjtGeom.mjGEOM_SPHERE,
+            size=[obstacle.radius, 0.0, 0.0],
+            pos=[x, y, z],
+        )
+
+
+def load_arm_spec(scene: Scene = REPORT_SCENE) -> mujoco.MjSpec:
+    """Parse the arm's scene and build a :class:`~lynxsim.scene.Scene` into it, uncompiled.
 
     Args:
-        obstacle: The cylinder obstacle, or None for a scene without one.
-        cube: Whether the free cube at P1 stays in the scene.
+        scene: Obstacles, table and cube (default: the report's cylinder and cube).
 
     Returns:
         The edited spec; ``spec.compile()`` gives the model.
+
+    Raises:
+        InvalidInputError: An obstacle's name is already a geom or body of the scene.
     """
+    if not isinstance(scene, Scene):
+        raise InvalidInputError(f"scene must be a lynxsim.scene.Scene, got {scene!r}")
     spec = mujoco.MjSpec.from_file(str(model_path(SCENE_XML)))
-    geom = spec.geom(OBSTACLE_GEOM)
-    if obstacle is None:
-        spec.delete(geom)
+    table = spec.geom(TABLE_GEOM)
+    t = scene.table
+    table.size = [0.5 * t.size[0], 0.5 * t.size[1], 0.5 * t.thickness]
+    table.pos = [t.center[0], t.center[1], t.top_z - 0.5 * t.thickness]
+    for obstacle in scene.obstacles:
+        _add_obstacle(spec, obstacle)
+    body = spec.body(CUBE_BODY)
+    if scene.cube is None:
+        spec.delete(body)
     else:
-        bottom = table_top_z(spec)  # below z = 0, so under any valid top_z
-        half_height = 0.5 * (obstacle.top_z - bottom)
-        geom.size = [obstacle.radius, half_height, 0.0]
-        geom.pos = [obstacle.center[0], obstacle.center[1], bottom + half_height]
-    if not cube:
-        spec.delete(spec.body(CUBE_BODY))
+        c = scene.cube
+        body.pos = list(c.position)
+        body.quat = [math.cos(0.5 * c.yaw), 0.0, 0.0, math.sin(0.5 * c.yaw)]
+        geom = spec.geom(CUBE_GEOM)
+        geom.size = [0.5 * c.size] * 3
+        geom.mass = c.mass
+        geom.friction = [c.friction, geom.friction[1], geom.friction[2]]
     return spec
 
 
-def load_arm_scene(
-    obstacle: ObstacleSpec | None = REPORT_OBSTACLE, *, cube: bool = True
-) -> mujoco.MjModel:
-    """Compile the arm's scene.
-
-    Args:
-        obstacle: The cylinder obstacle, or None for a scene without one.
-        cube: Whether the free cube at P1 stays in the scene.
+def load_arm_scene(scene: Scene = REPORT_SCENE) -> mujoco.MjModel:
+    """Compile the arm's scene (see :func:`load_arm_spec`).
 
     Returns:
         The compiled model (2 ms timestep, implicitfast).
     """
-    return load_arm_spec(obstacle, cube=cube).compile()
+    return load_arm_spec(scene).compile()
 
 
 def load_arm_model() -> mujoco.MjModel:
@@ -202,7 +205,9 @@ class SceneIds:
         tool_site: The tool-point site.
         arm_collision_geoms: Collision geoms of every body of the arm, its
             welded base included.
-        obstacle_geom: The obstacle, or None in a scene without one.
+        obstacle_geoms: The obstacles: every colliding geom of the world body
+            other than the table and the floor, in the scene's order.
+        cube_qpos: ``qpos`` address of the cube's free joint, or None.
         table_geom: The table top, or None (robot-only model).
         floor_geom: The floor, or None (robot-only model).
         cube_geom: The cube, or None.
@@ -217,7 +222,8 @@ class SceneIds:
     frame_sites: tuple[int, ...]
     tool_site: int
     arm_collision_geoms: tuple[int, ...]
-    obstacle_geom: int | None
+    obstacle_geoms: tuple[int, ...]
+    cube_qpos: int | None
     table_geom: int | None
     floor_geom: int | None
     cube_geom: int | None
@@ -238,6 +244,14 @@ class SceneIds:
         )
         arm_joints = tuple(_id(model, joint, n) for n in ARM_JOINTS)
         root = _id(model, mujoco.mjtObj.mjOBJ_BODY, ARM_ROOT_BODY)
+        table = _optional_id(model, geom, TABLE_GEOM)
+        floor = _optional_id(model, geom, FLOOR_GEOM)
+        support = {table, floor}
+        colliding = (np.asarray(model.geom_contype) != 0) | (
+            np.asarray(model.geom_conaffinity) != 0
+        )
+        world = set(np.flatnonzero((np.asarray(model.geom_bodyid) == 0) & colliding).tolist())
+        cube_joint = _optional_id(model, joint, CUBE_BODY)
         arm_geoms = tuple(
             g
             for g in range(model.ngeom)
@@ -254,8 +268,26 @@ class SceneIds:
             frame_sites=tuple(_id(model, site, n) for n in FRAME_SITES),
             tool_site=_id(model, site, TOOL_SITE),
             arm_collision_geoms=arm_geoms,
-            obstacle_geom=_optional_id(model, geom, OBSTACLE_GEOM),
-            table_geom=_optional_id(model, geom, TABLE_GEOM),
-            floor_geom=_optional_id(model, geom, FLOOR_GEOM),
+            obstacle_geoms=tuple(g for g in range(model.ngeom) if g in world and g not in support),
+            cube_qpos=None if cube_joint is None else int(model.jnt_qposadr[cube_joint]),
+            table_geom=table,
+            floor_geom=floor,
             cube_geom=_optional_id(model, geom, CUBE_GEOM),
+        )
+
+    def collision_groups(self, model: mujoco.MjModel) -> CollisionGroups:
+        """The collision definition of this scene (:mod:`lynxsim.sim.collision`)."""
+        mask = np.zeros(model.ngeom, dtype=bool)
+        robot, payload, support = mask.copy(), mask.copy(), mask.copy()
+        robot[list(self.arm_collision_geoms)] = True
+        if self.cube_geom is not None:
+            payload[self.cube_geom] = True
+        support[[g for g in (self.table_geom, self.floor_geom) if g is not None]] = True
+        obstacles = np.asarray(self.obstacle_geoms, dtype=np.intp)
+        return CollisionGroups(
+            robot=robot,
+            payload=payload,
+            support=support,
+            obstacle_geoms=obstacles,
+            obstacle_names=tuple(model.geom(g).name for g in self.obstacle_geoms),
         )

@@ -1,4 +1,4 @@
-"""Playing arm trajectories in the arm scene."""
+"""Playing arm trajectories in the arm scene: binding, physics grid, collision checker."""
 
 from __future__ import annotations
 
@@ -8,40 +8,37 @@ import mujoco
 import numpy as np
 
 from lynxsim.arm import tool_pose
-from lynxsim.sim.binding import RobotBinding
-from lynxsim.sim.playback import Playback, StepHook, play
 from lynxsim.sim.arm.model import SceneIds
+from lynxsim.sim.binding import RobotBinding
+from lynxsim.sim.collision import CollisionChecker
+from lynxsim.sim.rollout import StepHook, rollout
+from lynxsim.sim.summary import Playback, summarize
 from lynxsim.traj import Trajectory
 
-__all__ = ["arm_binding", "physics_grid", "play_arm"]
+__all__ = ["arm_binding", "arm_checker", "physics_grid", "play_arm"]
 
 
 def arm_binding(model: mujoco.MjModel) -> RobotBinding:
     """What the playback drives and watches in an arm scene (or the robot alone)."""
     ids = SceneIds.from_model(model)
-    mask = np.zeros(model.ngeom, dtype=bool)
-    robot = mask.copy()
-    robot[list(ids.arm_collision_geoms)] = True
-    obstacle = mask.copy()
-    if ids.obstacle_geom is not None:
-        obstacle[ids.obstacle_geom] = True
-    support = mask.copy()
-    for g in (ids.table_geom, ids.floor_geom):
-        if g is not None:
-            support[g] = True
-    payload = mask.copy()
-    if ids.cube_geom is not None:
-        payload[ids.cube_geom] = True
     return RobotBinding(
         actuator_ids=np.asarray(ids.arm_actuators, dtype=np.intp),
         qpos_adr=np.asarray(ids.arm_qpos, dtype=np.intp),
         tool_site_id=ids.tool_site,
-        robot_geoms=robot,
-        obstacle_geoms=obstacle,
-        support_geoms=support,
+        groups=ids.collision_groups(model),
         gripper_actuator_id=ids.gripper_actuator,
-        payload_geoms=payload,
     )
+
+
+def arm_checker(model: mujoco.MjModel) -> CollisionChecker:
+    """A :class:`~lynxsim.sim.collision.CollisionChecker` of the arm's five joints.
+
+    The fingers and the cube stay as in the model's ``qpos0`` (the cube at its
+    start) unless ``check(..., grasped=True)`` puts the cube at the tool point.
+    """
+    ids = SceneIds.from_model(model)
+    attach = None if ids.cube_qpos is None else (ids.cube_qpos, ids.tool_site)
+    return CollisionChecker(model, ids.collision_groups(model), ids.arm_qpos, attach=attach)
 
 
 def physics_grid(duration_s: float, dt: float) -> np.ndarray:
@@ -69,21 +66,21 @@ def play_arm(
     The commanded tool point is the analytic FK of the commanded joints.
 
     Args:
-        model: An arm scene (see :func:`lynxsim.sim.load_arm_scene`).
+        model: An arm scene (see :func:`lynxsim.sim.arm.model.load_arm_scene`).
         trajectory: The joint trajectory.
         task: Task name for the report.
         data: Data to use (a new one if None).
         settle_s: Hold time after the trajectory [s].
         gripper_cmd: Gripper opening [m] over trajectory time [s].
-        on_step: Called after every physics step (rendering, progress).
+        on_step: Called after every physics step (progress).
 
     Returns:
-        The :class:`~lynxsim.sim.playback.Playback`.
+        The :class:`~lynxsim.sim.summary.Playback` (report and log).
     """
     data = mujoco.MjData(model) if data is None else data
     t = physics_grid(trajectory.duration, float(model.opt.timestep))
     q_cmd = trajectory.sample(t).q
-    return play(
+    log = rollout(
         model,
         data,
         arm_binding(model),
@@ -95,3 +92,4 @@ def play_arm(
         gripper_cmd=gripper_cmd,
         on_step=on_step,
     )
+    return Playback(report=summarize(log), log=log)

@@ -7,11 +7,12 @@ from collections.abc import Callable
 
 import numpy as np
 
+from lynxsim.scene import REPORT_SCENE, Scene
+from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
-from lynxsim.sim.playback import Playback
-from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
+from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.arm.model import REPORT_OBSTACLE, ObstacleSpec, SceneIds, load_arm_scene
+from lynxsim.sim.summary import Playback
 from lynxsim.traj import Trajectory
 
 __all__ = ["GRIPPER_CLOSED_M", "GRIPPER_OPEN_M", "pick_and_place_gripper", "run_arm_trajectory"]
@@ -43,8 +44,7 @@ def run_arm_trajectory(
     trajectory: Trajectory,
     *,
     task: str,
-    obstacle: ObstacleSpec | None = REPORT_OBSTACLE,
-    cube: bool = True,
+    scene: Scene = REPORT_SCENE,
     video: str | os.PathLike[str] | None = None,
     render: RenderSettings | None = None,
     settle_s: float = 0.5,
@@ -52,36 +52,34 @@ def run_arm_trajectory(
 ) -> Playback:
     """Play a trajectory in the arm scene and optionally record it.
 
-    With the cube (placed at the report's P1), the gripper grips before the
-    motion and releases after it.
+    With a cube in the scene, the gripper grips before the motion and releases
+    after it.
 
     Args:
         trajectory: The joint trajectory.
         task: Task name for the report.
-        obstacle: The cylinder, or None for a scene without it.
-        cube: Whether the scene holds the cube.
+        scene: Obstacles, table and cube (default: the report's).
         video: MP4 path, or None for no video.
         render: Frame size, camera, quality and fps (defaults if None).
         settle_s: Hold time after the trajectory [s].
         progress: Called with the fraction done.
 
     Returns:
-        The :class:`~lynxsim.sim.playback.Playback`.
+        The :class:`~lynxsim.sim.summary.Playback`.
     """
-    model = load_arm_scene(obstacle=obstacle, cube=cube)
-    settings = render or RenderSettings()
-    hook = progress_hook(trajectory.duration + settle_s, float(model.opt.timestep), progress)
-    targets = np.array([p.position for p in trajectory.waypoints.poses])
-    tool_site = SceneIds.from_model(model).tool_site
-    with recorder(model, video, settings, tool_site, targets) as frames:
-        playback = play_arm(
-            model,
-            trajectory,
-            task=task,
-            settle_s=settle_s,
-            gripper_cmd=pick_and_place_gripper(trajectory.duration) if cube else None,
-            on_step=chain_hooks(frames, hook),
-        )
+    model = load_arm_scene(scene)
+    stepping, rendering = split_progress(progress, video is not None)
+    playback = play_arm(
+        model,
+        trajectory,
+        task=task,
+        settle_s=settle_s,
+        gripper_cmd=None if scene.cube is None else pick_and_place_gripper(trajectory.duration),
+        on_step=progress_hook(trajectory.duration + settle_s, float(model.opt.timestep), stepping),
+    )
+    if video is not None:
+        targets = np.array([p.position for p in trajectory.waypoints.poses])
+        render_log(model, playback.log, video, render or RenderSettings(), targets, rendering)
     if progress is not None:
         progress(1.0)
     return playback

@@ -1,6 +1,6 @@
 """The 3-RRR robot's MuJoCo scene: loading it, naming its parts, assembling it at a pose.
 
-The MJCF files in ``models/rrr/`` are the model (see their README). The
+The MJCF files in ``lynxsim/models/rrr/`` are the model (see their README). The
 mechanism moves in a horizontal plane. Per leg, ``qpos`` holds the actuated
 angle ``theta_i`` (direction of the proximal link from +x, as in
 :mod:`lynxsim.rrr`) and the elbow angle (distal link relative to the proximal
@@ -26,13 +26,14 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.reproduce.rrr_formulas import REPORT_MODE
 from lynxsim.resources import model_path
 from lynxsim.rrr import RRR_ROBOT, ik_one, leg_points
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
 from lynxsim.rrr.path import wrap_to_window
-from lynxsim.reproduce.rrr_formulas import REPORT_MODE
 from lynxsim.sim.binding import RobotBinding, name_to_id
+from lynxsim.sim.collision import CollisionGroups
 
 __all__ = [
     "HOME_MODE",
@@ -266,13 +267,18 @@ def rrr_binding(model: mujoco.MjModel, ids: RRRIds | None = None) -> RobotBindin
     robot = np.zeros(model.ngeom, dtype=bool)
     robot[ids.link_geoms] = True
     none = np.zeros(model.ngeom, dtype=bool)
+    groups = CollisionGroups(
+        robot=robot,
+        payload=none,
+        support=none.copy(),
+        obstacle_geoms=np.zeros(0, dtype=np.intp),
+        obstacle_names=(),
+    )
     return RobotBinding(
         actuator_ids=ids.actuators,
         qpos_adr=ids.base_qpos,
         tool_site_id=ids.centre_site,
-        robot_geoms=robot,
-        obstacle_geoms=none,
-        support_geoms=none.copy(),
+        groups=groups,
     )
 
 

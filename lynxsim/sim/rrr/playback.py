@@ -2,38 +2,40 @@
 
 The path is sampled at the end of every physics step, solved by the inverse
 kinematics in one working mode (:func:`lynxsim.rrr.path.actuated_path`) and
-played with :func:`lynxsim.sim.playback.play`, the arm's playback: the run
-report's tool point is the platform-centre needle, its self-collisions are
-the link interference, and :attr:`RunReport.extra` carries the 3-RRR figures
-of :data:`RRR_EXTRA_KEYS` (SI units, names with units).
+stepped by :func:`lynxsim.sim.rollout.rollout` and summarised by
+:func:`lynxsim.sim.summary.summarize`, as every run: the run report's tool
+point is the platform-centre needle, its self-collisions are the link
+interference, and its ``metrics`` are the 3-RRR figures (:class:`RRRMetrics`).
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.path import PlatformPath, actuated_path
+from lynxsim.rrr.path import ActuatedPath, PlatformPath, actuated_path
 from lynxsim.sim.arm.playback import physics_grid
-from lynxsim.sim.playback import Playback, StepHook, play
+from lynxsim.sim.report import RobotMetrics
+from lynxsim.sim.rollout import PlaybackLog, StepHook, rollout
 from lynxsim.sim.rrr.model import (
     RRRIds,
     assembly_qpos,
     load_rrr_scene,
     rrr_binding,
 )
+from lynxsim.sim.summary import Playback, summarize
 
 __all__ = [
     "CLEARANCE_CAP_M",
     "CLEARANCE_STRIDE",
-    "RRR_EXTRA_KEYS",
     "LoopMonitor",
+    "RRRMetrics",
     "link_pairs",
     "play_rrr",
     "start_model",
@@ -46,36 +48,65 @@ CLEARANCE_CAP_M = 0.1
 CLEARANCE_STRIDE = 5
 """Physics steps between two link-clearance measurements (10 ms at 2 ms steps)."""
 
-RRR_EXTRA_KEYS = (
-    "working_mode",
-    "loop_closure_max_m",
-    "loop_closure_final_m",
-    "platform_position_max_error_m",
-    "platform_position_rms_error_m",
-    "platform_position_final_error_m",
-    "platform_orientation_max_error_rad",
-    "platform_orientation_rms_error_rad",
-    "platform_orientation_final_error_rad",
-    "link_min_clearance_m",
-    "path_min_abs_parallel",
-    "path_min_serial",
-    "base_speed_max_rad_s",
-)
-"""What a 3-RRR run report adds in ``extra``:
 
-* ``working_mode``: the mode (0..7) the IK used;
-* ``loop_closure_*``: largest distance between a leg tip and its platform joint,
-  over the whole run and at its end [m];
-* ``platform_position_*_error_m`` / ``platform_orientation_*_error_rad``: simulated
-  platform pose against the commanded one, max and RMS over the trajectory and
-  after settling [m], [rad];
-* ``link_min_clearance_m``: smallest distance between links that may touch
-  (sampled every :data:`CLEARANCE_STRIDE` steps, capped at :data:`CLEARANCE_CAP_M`;
-  negative: overlap, also listed as self-collisions);
-* ``path_min_abs_parallel`` / ``path_min_serial``: distance of the commanded path
-  from parallel and leg singularities [-];
-* ``base_speed_max_rad_s``: fastest commanded actuated joint [rad/s].
-"""
+@dataclass(frozen=True)
+class RRRMetrics(RobotMetrics):
+    """What a 3-RRR run report adds (SI units).
+
+    Attributes:
+        working_mode: The mode (0..7) the IK used.
+        loop_closure_max_m: Largest distance between a leg tip and its platform
+            joint over the whole run [m].
+        loop_closure_final_m: The same at the end of the run [m].
+        platform_position_max_error_m: Simulated platform centre against the
+            commanded one, max over the trajectory [m].
+        platform_position_rms_error_m: RMS of the same [m].
+        platform_position_final_error_m: The same after settling [m].
+        platform_orientation_max_error_rad: Simulated platform orientation
+            against the commanded one, max over the trajectory [rad].
+        platform_orientation_rms_error_rad: RMS of the same [rad].
+        platform_orientation_final_error_rad: The same after settling [rad].
+        link_min_clearance_m: Smallest distance between links that may touch
+            (sampled every :data:`CLEARANCE_STRIDE` steps, capped at
+            :data:`CLEARANCE_CAP_M`; negative: overlap, also listed as self-collisions) [m].
+        path_min_abs_parallel: Distance of the commanded path from parallel singularities [-].
+        path_min_serial: Distance of the commanded path from leg singularities [-].
+        base_speed_max_rad_s: Fastest commanded actuated joint [rad/s].
+    """
+
+    working_mode: int
+    loop_closure_max_m: float
+    loop_closure_final_m: float
+    platform_position_max_error_m: float
+    platform_position_rms_error_m: float
+    platform_position_final_error_m: float
+    platform_orientation_max_error_rad: float
+    platform_orientation_rms_error_rad: float
+    platform_orientation_final_error_rad: float
+    link_min_clearance_m: float
+    path_min_abs_parallel: float
+    path_min_serial: float
+    base_speed_max_rad_s: float
+
+    def lines(self) -> list[str]:
+        """The figures as readable lines (mm, degrees)."""
+        deg = math.degrees
+        return [
+            f"working mode: {self.working_mode}",
+            f"loop closure: max {self.loop_closure_max_m * 1e3:.4g} mm, "
+            f"final {self.loop_closure_final_m * 1e3:.4g} mm",
+            f"platform position error: max {self.platform_position_max_error_m * 1e3:.4g} mm, "
+            f"RMS {self.platform_position_rms_error_m * 1e3:.4g} mm, "
+            f"final {self.platform_position_final_error_m * 1e3:.4g} mm",
+            "platform orientation error: "
+            f"max {deg(self.platform_orientation_max_error_rad):.4g} deg, "
+            f"RMS {deg(self.platform_orientation_rms_error_rad):.4g} deg, "
+            f"final {deg(self.platform_orientation_final_error_rad):.4g} deg",
+            f"link clearance: min {self.link_min_clearance_m * 1e3:.4g} mm",
+            f"path singularity distance: parallel {self.path_min_abs_parallel:.4g}, "
+            f"serial {self.path_min_serial:.4g}",
+            f"base speed: max {deg(self.base_speed_max_rad_s):.4g} deg/s",
+        ]
 
 
 def link_pairs(model: mujoco.MjModel, ids: RRRIds) -> list[tuple[int, int]]:
@@ -104,8 +135,8 @@ def link_pairs(model: mujoco.MjModel, ids: RRRIds) -> list[tuple[int, int]]:
 class LoopMonitor:
     """Per-step bookkeeping of a 3-RRR run: loop closure, pose error, link clearance.
 
-    Called by :func:`~lynxsim.sim.playback.play` as its ``extra_metrics`` after
-    every recorded physics step; the step index is the number of calls so far.
+    A step hook of :func:`~lynxsim.sim.rollout.rollout`, called after every
+    recorded physics step.
 
     Args:
         model: The model.
@@ -126,49 +157,61 @@ class LoopMonitor:
         self.orientation_error: list[float] = []
         self.clearance: list[float] = []
 
-    def __call__(self, data: mujoco.MjData) -> dict[str, float]:
-        """Record this step; returns the per-step maxima for the run report."""
+    def __call__(self, step: int, data: mujoco.MjData) -> None:
+        """Record this step."""
         # Plain floats: this runs every physics step, numpy calls on scalars would dominate.
-        step = len(self.loop)
         x_ref, y_ref, a_ref = self._ref[min(step, len(self._ref) - 1)].tolist()
         a = self._ids.platform_qpos
         x, y, _, w, qx, qy, qz = data.qpos[a : a + 7].tolist()
         alpha = math.atan2(2.0 * (w * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
         sites = data.site_xpos.tolist()
-        loop = max(math.dist(sites[t], sites[j]) for t, j in self._loop_sites)
         turn = (alpha - a_ref + math.pi) % (2.0 * math.pi) - math.pi
-        self.loop.append(loop)
+        self.loop.append(max(math.dist(sites[t], sites[j]) for t, j in self._loop_sites))
         self.position_error.append(math.hypot(x - x_ref, y - y_ref))
         self.orientation_error.append(abs(turn))
+        clearance = math.nan
         if self._pairs and step % CLEARANCE_STRIDE == 0:
-            self.clearance.append(
-                min(
-                    mujoco.mj_geomDistance(self._model, data, g1, g2, CLEARANCE_CAP_M, self._fromto)
-                    for g1, g2 in self._pairs
-                )
+            clearance = min(
+                mujoco.mj_geomDistance(self._model, data, g1, g2, CLEARANCE_CAP_M, self._fromto)
+                for g1, g2 in self._pairs
             )
-        return {"loop_closure_max_m": loop}
+        self.clearance.append(clearance)
 
-    def summary(self, trajectory_steps: int) -> dict[str, float]:
-        """The monitored part of :data:`RRR_EXTRA_KEYS` for a run of ``trajectory_steps``."""
-        loop = np.asarray(self.loop)
-        pos = np.asarray(self.position_error)
-        ori = np.asarray(self.orientation_error)
-        n = min(trajectory_steps, len(loop))
-        traj_pos, traj_ori = pos[:n], ori[:n]
+    def channels(self) -> dict[str, FloatArray]:
+        """The per-step records for the run's log: each (S,) (clearance NaN between samples)."""
         return {
-            "loop_closure_max_m": float(loop.max(initial=0.0)),
-            "loop_closure_final_m": float(loop[-1]) if len(loop) else np.nan,
-            "platform_position_max_error_m": float(traj_pos.max(initial=0.0)),
-            "platform_position_rms_error_m": float(np.sqrt(np.mean(traj_pos**2))) if n else 0.0,
-            "platform_position_final_error_m": float(pos[-1]) if len(pos) else np.nan,
-            "platform_orientation_max_error_rad": float(traj_ori.max(initial=0.0)),
-            "platform_orientation_rms_error_rad": float(np.sqrt(np.mean(traj_ori**2)))
-            if n
-            else 0.0,
-            "platform_orientation_final_error_rad": float(ori[-1]) if len(ori) else np.nan,
-            "link_min_clearance_m": float(min(self.clearance, default=CLEARANCE_CAP_M)),
+            "loop_closure_m": np.asarray(self.loop),
+            "platform_position_error_m": np.asarray(self.position_error),
+            "platform_orientation_error_rad": np.asarray(self.orientation_error),
+            "link_clearance_m": np.asarray(self.clearance),
         }
+
+
+def _rrr_metrics(log: PlaybackLog, mode: int, act: ActuatedPath, dt: float) -> RRRMetrics:
+    """The 3-RRR figures of a run from its log's channels and the commanded path."""
+    ch = log.channels
+    loop = ch["loop_closure_m"]
+    pos = ch["platform_position_error_m"]
+    ori = ch["platform_orientation_error_rad"]
+    clearance = ch["link_clearance_m"]
+    n = min(log.trajectory_steps, len(loop))
+    traj_pos, traj_ori = pos[:n], ori[:n]
+    sampled = clearance[np.isfinite(clearance)]
+    return RRRMetrics(
+        working_mode=mode,
+        loop_closure_max_m=float(loop.max(initial=0.0)),
+        loop_closure_final_m=float(loop[-1]) if len(loop) else math.nan,
+        platform_position_max_error_m=float(traj_pos.max(initial=0.0)),
+        platform_position_rms_error_m=float(np.sqrt(np.mean(traj_pos**2))) if n else 0.0,
+        platform_position_final_error_m=float(pos[-1]) if len(pos) else math.nan,
+        platform_orientation_max_error_rad=float(traj_ori.max(initial=0.0)),
+        platform_orientation_rms_error_rad=float(np.sqrt(np.mean(traj_ori**2))) if n else 0.0,
+        platform_orientation_final_error_rad=float(ori[-1]) if len(ori) else math.nan,
+        link_min_clearance_m=float(sampled.min(initial=CLEARANCE_CAP_M)),
+        path_min_abs_parallel=act.min_abs_parallel,
+        path_min_serial=act.min_serial,
+        base_speed_max_rad_s=float(np.abs(np.diff(act.theta, axis=0)).max(initial=0.0) / dt),
+    )
 
 
 def start_model(path: PlatformPath, mode: int) -> tuple[mujoco.MjModel, FloatArray]:
@@ -198,7 +241,6 @@ def play_rrr(
     settle_s: float = 0.5,
     presettle_s: float = 0.2,
     on_step: StepHook | None = None,
-    monitor: Callable[[LoopMonitor], None] | None = None,
 ) -> Playback:
     """Play a platform path through the actuated joints, IK in one working mode every step.
 
@@ -216,11 +258,11 @@ def play_rrr(
         settle_s: Hold time after the path [s].
         presettle_s: Unrecorded hold at the start [s].
         on_step: Called after every physics step (rendering, progress).
-        monitor: Receives the :class:`LoopMonitor` after the run (per-step logs).
 
     Returns:
-        The :class:`~lynxsim.sim.playback.Playback`; its report's ``extra`` holds
-        :data:`RRR_EXTRA_KEYS`.
+        The :class:`~lynxsim.sim.summary.Playback`; its report's ``metrics`` are
+        :class:`RRRMetrics`, its log's ``channels`` the per-step loop closure,
+        platform errors and link clearance.
 
     Raises:
         UnreachablePlatformPoseError: The path leaves the workspace.
@@ -249,7 +291,13 @@ def play_rrr(
     pose_ref = sample.pose[1:]
     tool_ref = np.column_stack([pose_ref[:, :2], np.full(len(pose_ref), centre_z)])
     watcher = LoopMonitor(model, ids, pose_ref)
-    playback = play(
+
+    def hooks(step: int, d: mujoco.MjData) -> None:
+        watcher(step, d)
+        if on_step is not None:
+            on_step(step, d)
+
+    log = rollout(
         model,
         data,
         rrr_binding(model, ids),
@@ -259,20 +307,7 @@ def play_rrr(
         trajectory=path.label,
         settle_s=settle_s,
         presettle_s=presettle_s,
-        on_step=on_step,
-        extra_metrics=watcher,
+        on_step=hooks,
     )
-    extra = dict(playback.report.extra)
-    extra.update(watcher.summary(playback.log.trajectory_steps))
-    extra.update(
-        {
-            "working_mode": float(mode),
-            "path_min_abs_parallel": act.min_abs_parallel,
-            "path_min_serial": act.min_serial,
-            "base_speed_max_rad_s": float(np.abs(np.diff(theta, axis=0)).max(initial=0.0) / dt),
-        }
-    )
-    if monitor is not None:
-        monitor(watcher)
-    report = dataclasses.replace(playback.report, extra={k: extra[k] for k in RRR_EXTRA_KEYS})
-    return Playback(report=report, log=playback.log)
+    log = dataclasses.replace(log, channels=watcher.channels())
+    return Playback(report=summarize(log, _rrr_metrics(log, mode, act, dt)), log=log)

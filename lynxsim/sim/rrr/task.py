@@ -15,11 +15,11 @@ from lynxsim.rrr.path import (
     PlatformPath,
     platform_path,
 )
-from lynxsim.sim.playback import Playback
-from lynxsim.sim.recording import ProgressFn, chain_hooks, progress_hook, recorder
+from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.rrr.model import HOME_MODE, RRRIds
+from lynxsim.sim.rrr.playback import play_rrr, start_model
+from lynxsim.sim.summary import Playback
 from lynxsim.tasks import PlanarPose, Task
 from lynxsim.traj.kinds import TrajectoryKind
 
@@ -51,9 +51,10 @@ def path_from_task(
             planned for it (the message lists those that are).
         SegmentDurationError: A duration is too short and ``stretch`` is off.
     """
-    if task.robot != "rrr":
+    poses = [p for p in task.poses if isinstance(p, PlanarPose)]
+    if len(poses) != len(task.poses):
         raise InvalidInputError(
-            f"task {task.name!r} is for robot {task.robot!r}; this runs robot 'rrr' tasks"
+            f"task {task.name!r} is for robot {task.robot!r}; its poses are not platform poses"
         )
     names = [k.value for k in TrajectoryKind]
     if kind is not None and str(kind) not in names:
@@ -66,7 +67,6 @@ def path_from_task(
             f"trajectory type {chosen.value!r} is not planned for the 3-RRR robot; "
             f"expected one of: {', '.join(k.value for k in RRR_TRAJECTORY_KINDS)}"
         )
-    poses = [p for p in task.poses if isinstance(p, PlanarPose)]
     return platform_path(
         np.array([[p.x, p.y, p.alpha] for p in poses]),
         task.durations,
@@ -102,8 +102,8 @@ def run_rrr_path(
         progress: Called with the fraction done.
 
     Returns:
-        The :class:`~lynxsim.sim.playback.Playback` (report ``extra``: see
-        :data:`lynxsim.sim.rrr.playback.RRR_EXTRA_KEYS`).
+        The :class:`~lynxsim.sim.summary.Playback` (report ``metrics``:
+        :class:`lynxsim.sim.rrr.playback.RRRMetrics`).
     """
     model, _ = start_model(path, mode)
     ids = RRRIds.from_model(model)
@@ -111,18 +111,19 @@ def run_rrr_path(
     data.qpos[:] = model.qpos0
     mujoco.mj_kinematics(model, data)
     height = float(data.site_xpos[ids.centre_site][2])
-    targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
-    hook = progress_hook(path.duration + settle_s, float(model.opt.timestep), progress)
-    with recorder(model, video, render, ids.centre_site, targets) as frames:
-        playback = play_rrr(
-            path,
-            mode,
-            task=task,
-            model=model,
-            data=data,
-            settle_s=settle_s,
-            on_step=chain_hooks(frames, hook),
-        )
+    stepping, rendering = split_progress(progress, video is not None)
+    playback = play_rrr(
+        path,
+        mode,
+        task=task,
+        model=model,
+        data=data,
+        settle_s=settle_s,
+        on_step=progress_hook(path.duration + settle_s, float(model.opt.timestep), stepping),
+    )
+    if video is not None:
+        targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
+        render_log(model, playback.log, video, render, targets, rendering)
     if progress is not None:
         progress(1.0)
     return playback

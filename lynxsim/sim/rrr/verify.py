@@ -3,21 +3,20 @@
 * :func:`check_pose` assembles the mechanism a few millimetres from a target
   pose, drives the actuated joints along the IK's angles to the target's, lets
   it settle and compares the simulated platform pose with the target. Links
-  that overlap at the target (link interference, see ``models/rrr/README.md``)
+  that overlap at the target (link interference, see ``lynxsim/models/rrr/README.md``)
   are reported, and the settling then runs with contacts off, so that the
   kinematic verdict stays separate from the interference verdict.
 * :func:`pull_toward` switches the actuators off and pulls the free platform
   towards a pose with a task-space spring: it reaches a reachable pose, and
   stops on the workspace boundary (a leg stretched or folded) short of an
   unreachable one; no inverse kinematics involved.
-* :func:`figure20_simulation` judges the report's Figure 20 poses both ways.
 """
 
 from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 import mujoco
@@ -25,19 +24,17 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError, LynxsimError
-from lynxsim.rrr import N_MODES, RRR_ROBOT, ik, ik_one, mode_index, singularity_measures
+from lynxsim.rrr import RRR_ROBOT, ik_one, mode_index, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
 from lynxsim.rrr.path import actuated_path, platform_path
-from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, Figure20Pose
-from lynxsim.sim.contacts import ContactTracker
+from lynxsim.sim.collision import ContactTracker
 from lynxsim.sim.report import ContactPair
 from lynxsim.sim.rrr.model import (
     HOME_MODE,
     HOME_POSE,
     RRRIds,
     assembly_qpos,
-    load_rrr_scene,
     loop_closure_errors,
     platform_pose,
     rrr_binding,
@@ -47,12 +44,9 @@ __all__ = [
     "APPROACH_OFFSET",
     "ORIENTATION_TOL_RAD",
     "POSITION_TOL_M",
-    "Figure20Sim",
     "PoseCheck",
     "PullCheck",
     "check_pose",
-    "figure20_simulation",
-    "format_figure20_simulation",
     "interference_at",
     "pull_toward",
     "settled_mode",
@@ -109,8 +103,10 @@ def interference_at(
     data.time = 0.0
     mujoco.mj_kinematics(model, data)
     mujoco.mj_collision(model, data)
-    tracker = ContactTracker(model, rrr_binding(model, ids))
-    tracker.update(data)
+    names = tuple(model.geom(g).name for g in range(model.ngeom))
+    tracker = ContactTracker(names, rrr_binding(model, ids).groups)
+    n = int(data.ncon)
+    tracker.update(0.0, np.array(data.contact.geom[:n], dtype=np.intp), data.contact.dist[:n])
     return tracker.self_collisions()
 
 
@@ -355,146 +351,3 @@ def pull_toward(
         loop_closure_max_m=loop_max,
         speed_final=float(np.linalg.norm(data.qvel[ids.platform_dof : ids.platform_dof + 2])),
     )
-
-
-@dataclass(frozen=True)
-class Figure20Sim:
-    """One of the report's Figure 20 poses judged by simulation.
-
-    Attributes:
-        pose: The report's pose (mm, deg) and what the report says.
-        ik_reachable: The inverse kinematics finds the pose (every working mode).
-        failing_legs: 1-based legs that cannot reach it (empty when reachable).
-        checks: :func:`check_pose` in every working mode (empty when unreachable).
-        pull: :func:`pull_toward` from ``home`` (actuators off, no IK).
-    """
-
-    pose: Figure20Pose
-    ik_reachable: bool
-    failing_legs: tuple[int, ...]
-    checks: tuple[PoseCheck, ...]
-    pull: PullCheck
-
-    @property
-    def reached_modes(self) -> tuple[int, ...]:
-        """Working modes in which the commanded pose settled within tolerance."""
-        return tuple(c.mode for c in self.checks if c.reached)
-
-    @property
-    def clear_modes(self) -> tuple[int, ...]:
-        """Working modes in which no links overlap at the pose."""
-        return tuple(c.mode for c in self.checks if not c.interference)
-
-    @property
-    def reachable(self) -> bool:
-        """The simulation's verdict: reached in some working mode, or by the pull.
-
-        Commanded with the IK's actuated angles, the platform settles at the
-        pose in some working mode; or, where the IK finds nothing, the pulled
-        platform gets there anyway (it does not, for the poses tried).
-        """
-        return bool(self.reached_modes) or self.pull.reached
-
-
-def _radians(p: Figure20Pose) -> FloatArray:
-    return np.array([p.x_mm * 1e-3, p.y_mm * 1e-3, math.radians(p.alpha_deg)])
-
-
-def figure20_simulation(
-    poses: Sequence[Figure20Pose] = FIGURE20_POSES,
-    *,
-    modes: Sequence[int] = tuple(range(N_MODES)),
-) -> list[Figure20Sim]:
-    """Judge the report's Figure 20 poses by simulation.
-
-    Args:
-        poses: The poses (default: Figure 20's six and the one its text calls unreachable).
-        modes: Working modes to settle each reachable pose in.
-
-    Returns:
-        One :class:`Figure20Sim` per pose.
-    """
-    model = load_rrr_scene()
-    data = mujoco.MjData(model)
-    ids = RRRIds.from_model(model)
-    out = []
-    for spec in poses:
-        target = _radians(spec)
-        result = ik(target)
-        ok = bool(result.ok)
-        checks = (
-            tuple(check_pose(model, data, target, int(m), ids=ids) for m in modes) if ok else ()
-        )
-        out.append(
-            Figure20Sim(
-                pose=spec,
-                ik_reachable=ok,
-                failing_legs=result.failing_legs(),
-                checks=checks,
-                pull=pull_toward(model, data, target, ids=ids),
-            )
-        )
-    return out
-
-
-def _mm_deg(position_m: float, angle_rad: float) -> str:
-    return f"{position_m * 1e3:.3f} mm, {math.degrees(angle_rad):.3f} deg"
-
-
-def format_figure20_simulation(rows: Sequence[Figure20Sim]) -> str:
-    """The simulation verdicts as text (mm, deg), a few lines per pose."""
-    lines = [
-        "3-RRR poses of the report's Figure 20 judged in MuJoCo. Settle: the IK's actuated "
-        "angles commanded in each working mode; reached within "
-        f"{POSITION_TOL_M * 1e3:g} mm and {math.degrees(ORIENTATION_TOL_RAD):g} deg. "
-        "Pull: actuators off, platform pulled from home by a spring.",
-    ]
-    for row in rows:
-        p = row.pose
-        said = "reachable" if p.report_reachable else "unreachable"
-        verdict = "REACHABLE" if row.reachable else "UNREACHABLE"
-        lines.append(
-            f"{p.label} ({p.x_mm:g} mm, {p.y_mm:g} mm, {p.alpha_deg:g} deg): simulation says "
-            f"{verdict} (the report: {said})"
-        )
-        pull = row.pull
-        spans = ", ".join(f"{v * 1e3:.1f}" for v in pull.leg_span_m)
-        lines.append(
-            f"    pull: {'reached' if pull.reached else 'stops short'}, gap "
-            f"{_mm_deg(pull.position_gap_m, pull.orientation_gap_rad)}, leg spans {spans} mm, "
-            f"loop closure max {pull.loop_closure_max_m * 1e3:.4f} mm"
-        )
-        if not row.checks:
-            legs = ", ".join(str(leg) for leg in row.failing_legs)
-            lines.append(f"    IK: no solution, leg {legs} cannot reach (nothing to command)")
-            continue
-        reached = ",".join(str(m) for m in row.reached_modes) or "none"
-        clear = ",".join(str(m) for m in row.clear_modes) or "none"
-        loop = max(c.loop_closure_max_m for c in row.checks) * 1e3
-        lines.append(
-            f"    settle: reached in modes {reached}; links clear in modes {clear}; "
-            f"loop closure max {loop:.4f} mm"
-        )
-        for c in row.checks:
-            if c.reached and not c.interference and c.mode != REPORT_MODE:
-                continue
-            notes = []
-            if not c.reached:
-                near = abs(c.parallel_measure) < 0.3
-                notes.append(
-                    "not reached"
-                    + (f", settled in mode {c.settled_mode}" if c.settled_mode != c.mode else "")
-                    + f" (|parallel measure| {abs(c.parallel_measure):.2f}"
-                    + (": near a parallel singularity)" if near else ")")
-                )
-            if c.interference:
-                worst = max(c.interference, key=lambda pair: pair.max_penetration_m)
-                notes.append(
-                    f"links overlap: {worst.geom1}/{worst.geom2} by "
-                    f"{worst.max_penetration_m * 1e3:.1f} mm (settled with contacts off)"
-                )
-            lines.append(
-                f"    mode {c.mode}: error {_mm_deg(c.position_error_m, c.orientation_error_rad)}"
-                + (f"; {'; '.join(notes)}" if notes else "")
-            )
-    return "\n".join(lines)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import imageio.v2 as imageio
+import pytest
 
 from lynxsim.cli import main
 from lynxsim.envs import record_expert_episode
@@ -10,6 +11,7 @@ from lynxsim.envs import record_expert_episode
 RENDER_STD_MIN = 5.0
 
 
+@pytest.mark.slow
 def test_env_command_reports_success_return_and_collisions(capsys, tmp_path):
     video = tmp_path / "expert.mp4"
     argv = ["env", "--policy", "expert", "--episodes", "2", "--seed", "3", "--quiet"]

@@ -8,10 +8,11 @@ import sys
 from pathlib import Path
 
 import imageio.v2 as imageio
+import pytest
 
 from lynxsim.cli import main
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 SHORT_TASK = """
 name = "short"
@@ -26,6 +27,12 @@ pitch_deg = 0.0
 [[poses]]
 position_mm = [0.0, -300.0, 0.0]
 pitch_deg = -90.0
+[[obstacles]]
+name = "cylinder"
+shape = "cylinder"
+position_mm = [150.0, 150.0, 0.0]
+radius_mm = 40.0
+height_mm = 400.0
 """
 
 
@@ -35,7 +42,8 @@ def test_play_json_reports_collision_and_exits_zero(capsys):
     report = json.loads(capsys.readouterr().out)
     assert report["collided"] is True
     assert report["trajectory"] == "quintic"
-    assert report["obstacle"]["first_pair"][1] == "obstacle"
+    assert report["obstacle"]["first_pair"][1] == "cylinder"
+    assert report["obstacle"]["first_obstacle"] == "cylinder"
     assert report["healthy"] is True
 
 
@@ -46,7 +54,8 @@ def test_play_prints_table_and_writes_video_and_report(tmp_path, capsys):
     argv = ["play", str(task), "--type", "ruckig", "--out", str(video), "--quality", "fast"]
     assert main([*argv, "--quiet"]) == 0
     out = capsys.readouterr().out
-    assert "obstacle: clear" in out
+    assert "obstacles: clear" in out
+    assert "  cylinder: clear, minimum clearance" in out
     assert "tool tracking error: max" in out
     assert json.loads(video.with_suffix(".json").read_text())["trajectory"] == "ruckig"
     assert imageio.get_reader(video).count_frames() > 30
@@ -68,15 +77,14 @@ def test_play_bad_task_file_is_one_line_naming_file_and_field(tmp_path):
     assert "poses[1].pitch_deg" in lines[0]
 
 
+@pytest.mark.slow
 def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
     tasks = tmp_path / "tasks"
     tasks.mkdir()
     (tasks / "short.toml").write_text(SHORT_TASK)
     out = tmp_path / "out"
-    assert (
-        main(["demo", "--tasks", str(tasks), "--out", str(out), "--quality", "fast", "--quiet"])
-        == 0
-    )
+    argv = ["demo", "--tasks", str(tasks), "--out-dir", str(out), "--quality", "fast", "--quiet"]
+    assert main(argv) == 0
     printed = capsys.readouterr().out
     kinds = ["free", "cubic", "quintic", "lspb", "line", "ruckig"]
     for kind in kinds:

@@ -1,20 +1,18 @@
-"""``lynxsim rrr``: handlers called through a local parser (the group is wired in elsewhere)."""
+"""``lynxsim rrr``: handlers called through the real parser, so their exceptions show."""
 
 from __future__ import annotations
 
-import argparse
 import json
 
 import pytest
 
-from lynxsim.cli import rrr
-from lynxsim.errors import InvalidInputError, UnreachablePlatformPoseError
+from lynxsim.cli import build_parser
+from lynxsim.errors import UnreachablePlatformPoseError
 
 
 @pytest.fixture
 def run(capsys):
-    parser = argparse.ArgumentParser(prog="lynxsim")
-    rrr.register(parser.add_subparsers(dest="command", required=True))
+    parser = build_parser()
 
     def _run(*argv):
         args = parser.parse_args(["rrr", *argv])
@@ -51,9 +49,11 @@ def test_unreachable_pose_names_the_leg_in_one_line(run):
     assert "\n" not in str(info.value)
 
 
-def test_non_finite_pose_is_rejected(run):
-    with pytest.raises(InvalidInputError, match="finite"):
+def test_non_finite_pose_is_a_usage_error(run, capsys):
+    with pytest.raises(SystemExit) as info:
         run("ik", "nan", "150", "0")
+    assert info.value.code == 2
+    assert "argument X: must be a finite number, got 'nan'" in capsys.readouterr().err
 
 
 def test_fk_lists_assembly_modes(run):
@@ -90,9 +90,11 @@ def test_workspace_writes_a_png(run, tmp_path):
     assert "alpha  -20.00 deg" in out
 
 
-def test_workspace_rejects_a_bad_resolution(run, tmp_path):
-    with pytest.raises(InvalidInputError, match="positive"):
+def test_workspace_rejects_a_bad_resolution(run, tmp_path, capsys):
+    with pytest.raises(SystemExit) as info:
         run("workspace", "--resolution-mm", "0", "--out", str(tmp_path / "x.png"))
+    assert info.value.code == 2
+    assert "--resolution-mm: must be a positive number, got '0'" in capsys.readouterr().err
 
 
 def test_bad_mode_is_a_usage_error(run):

@@ -46,27 +46,35 @@ def test_ik_json_lists_candidates(capsys):
 
 
 @pytest.mark.parametrize(
-    ("argv", "message"),
+    ("argv", "code", "message"),
     [
-        (["ik", "600", "0", "0", "0"], "out of the arm's reach"),
-        (["ik", "100", "0", "50", "90"], "joint 4 out of range"),
-        (["ik", "1", "2", "nan", "3"], "must be finite"),
-        (["fk", "0", "0", "inf", "0", "0"], "must be finite"),
-        (["ik", "1", "2"], "required"),
-        (["ik", "1", "2", "x", "3"], "invalid float value"),
-        (["workspace", "--samples", "0"], "must be positive"),
+        (["ik", "600", "0", "0", "0"], 1, "out of the arm's reach"),
+        (["ik", "100", "0", "50", "90"], 1, "joint 4 out of range"),
+        (["ik", "1", "2", "nan", "3"], 2, "argument Z: must be a finite number, got 'nan'"),
+        (["fk", "0", "0", "inf", "0", "0"], 2, "argument Q3: must be a finite number"),
+        (["ik", "1", "2"], 2, "required: Z, PITCH"),
+        (["ik", "1", "2", "x", "3"], 2, "invalid float value: 'x'"),
+        (["workspace", "--samples", "0"], 1, "must be positive"),
     ],
     ids=["out-of-reach", "joint-range", "nan", "inf", "missing", "not-a-number", "no-samples"],
 )
-def test_bad_input_gives_one_line_and_nonzero_exit(argv, message):
+def test_bad_input_gives_one_line_and_nonzero_exit(cli, argv, code, message):
+    result = cli(*argv)
+    assert result.code == code
+    assert result.err.count("\n") == 1, result.err
+    assert message in result.err
+    assert result.out == ""
+
+
+def test_bad_input_from_the_shell_has_no_traceback():
     proc = subprocess.run(
-        [sys.executable, "-m", "lynxsim", *argv], capture_output=True, text=True, check=False
+        [sys.executable, "-m", "lynxsim", "fk", "1", "2"],
+        capture_output=True,
+        text=True,
+        check=False,
     )
-    assert proc.returncode != 0
-    lines = proc.stderr.strip().splitlines()
-    assert len(lines) == 1, proc.stderr
-    assert message in lines[0]
-    assert "Traceback" not in proc.stderr
+    assert proc.returncode == 2
+    assert proc.stderr == "lynxsim fk: error: the following arguments are required: Q3, Q4, Q5\n"
 
 
 def test_workspace_writes_png(tmp_path, capsys):

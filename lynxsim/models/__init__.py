@@ -1,0 +1,1 @@
+"""MJCF models shipped with lynxsim; :mod:`lynxsim.resources` finds them by name."""

@@ -1,0 +1,300 @@
+"""Stepping: joint commands in, a :class:`PlaybackLog` out (no verdicts, no video).
+
+The caller samples its trajectory on the physics time grid (one target per
+step) and gives the commanded tool point of each sample; :func:`rollout`
+steps MuJoCo and records, per step, the whole state, the commanded and actual
+joints, the tool site, actuator forces, the contacts that count
+(:mod:`lynxsim.sim.collision`) and the clearance to each obstacle. The verdicts
+and figures come from :func:`lynxsim.sim.summary.summarize`; videos from
+:func:`lynxsim.sim.recording.render_log`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+import numpy.typing as npt
+
+from lynxsim.errors import InvalidInputError, LimitViolationError
+from lynxsim.sim.binding import RobotBinding
+from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances
+
+__all__ = ["RANGE_TOL", "LogMeta", "PlaybackLog", "StepHook", "mujoco_warnings", "rollout"]
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+StepHook = Callable[[int, mujoco.MjData], None]
+"""Called after each recorded physics step with (step index, data)."""
+
+RANGE_TOL = 1e-6
+"""Commands may exceed a joint range by this much [rad] (rounding of the samples)."""
+
+
+@dataclass(frozen=True)
+class LogMeta:
+    """What a summary needs to know about the model of a log.
+
+    Attributes:
+        task: Task name.
+        trajectory: Trajectory type name.
+        physics_dt_s: Physics time step [s].
+        geom_names: Name of every geom, (ngeom,).
+        groups: The collision groups.
+        force_limit: Largest |force| of each commanded actuator, (n,) [N·m].
+    """
+
+    task: str
+    trajectory: str
+    physics_dt_s: float
+    geom_names: tuple[str, ...]
+    groups: CollisionGroups
+    force_limit: FloatArray
+
+
+@dataclass(frozen=True)
+class PlaybackLog:
+    """Per-step record of a playback (S recorded steps, n commanded joints, m obstacles).
+
+    Attributes:
+        meta: Names and limits of the model.
+        time_s: Simulated time after each step, (S,) [s].
+        qpos: The whole state after each step, (S, nq).
+        q_cmd: Commanded joints, (S, n) [rad].
+        q: Simulated joints, (S, n) [rad].
+        tool_ref: Commanded tool point, (S, 3) [m].
+        tool: Simulated tool site, (S, 3) [m].
+        force: Actuator forces, (S, n) [N·m].
+        clearance_m: Signed distance to each obstacle, (S, m) [m].
+        contact_step: Step of each recorded contact, (K,).
+        contact_geoms: Its geom pair, (K, 2).
+        contact_dist: Its signed distance, (K,) [m] (only contacts that count
+            as an obstacle, self or table hit are recorded).
+        trajectory_steps: How many of the S steps belong to the trajectory (the rest settle).
+        duration_s: Trajectory duration [s].
+        settle_s: Hold time after it [s].
+        tool_target: The final commanded tool point, (3,) [m].
+        warnings: MuJoCo warning counts by name (only those that fired).
+        diverged_at_s: Time at which the state became non-finite, or None.
+        channels: Robot-specific per-step records, each (S,) (see the robot's adapter).
+    """
+
+    meta: LogMeta
+    time_s: FloatArray
+    qpos: FloatArray
+    q_cmd: FloatArray
+    q: FloatArray
+    tool_ref: FloatArray
+    tool: FloatArray
+    force: FloatArray
+    clearance_m: FloatArray
+    contact_step: IntArray
+    contact_geoms: IntArray
+    contact_dist: FloatArray
+    trajectory_steps: int
+    duration_s: float
+    settle_s: float
+    tool_target: FloatArray
+    warnings: dict[str, int] = field(default_factory=dict)
+    diverged_at_s: float | None = None
+    channels: dict[str, FloatArray] = field(default_factory=dict)
+
+    @property
+    def steps(self) -> int:
+        """Number of recorded steps S."""
+        return len(self.time_s)
+
+    def obstacle_hits(self) -> npt.NDArray[np.bool_]:
+        """Per step, whether the robot or payload touched an obstacle, (S,)."""
+        c = classify_contacts(self.meta.groups, self.contact_geoms, self.contact_dist)
+        out = np.zeros(self.steps, dtype=bool)
+        out[self.contact_step[c.obstacle]] = True
+        return out
+
+
+def mujoco_warnings(data: mujoco.MjData) -> dict[str, int]:
+    """MuJoCo's warning counters that fired, by short name."""
+    out = {}
+    for name, w in mujoco.mjtWarning.__members__.items():
+        if int(w) >= int(mujoco.mjtWarning.mjNWARNING):
+            continue
+        count = int(data.warning[int(w)].number)
+        if count:
+            out[name.removeprefix("mjWARN_").lower()] = count
+    return out
+
+
+def _check_ranges(
+    model: mujoco.MjModel, binding: RobotBinding, q_cmd: FloatArray, dt: float
+) -> None:
+    """Refuse commands outside the actuators' control ranges (= joint ranges).
+
+    Sample ``k`` is the target of the step that ends at ``(k + 1) dt``, the time named.
+    """
+    lo, hi = np.asarray(model.actuator_ctrlrange)[binding.actuator_ids].T
+    excess = np.maximum(lo - q_cmd, q_cmd - hi)  # (T, n), > 0 outside
+    k, j = np.unravel_index(int(np.argmax(excess)), excess.shape)
+    worst = float(excess[k, j])
+    if worst > RANGE_TOL:
+        name = model.actuator(int(binding.actuator_ids[j])).name
+        raise LimitViolationError(
+            f"command leaves the range of joint {j + 1} ({name}) by {np.degrees(worst):.3f} deg "
+            f"at t = {(k + 1) * dt:.3f} s; refused before playback",
+            joint=int(j) + 1,
+            quantity="position",
+            time=(k + 1) * dt,
+            segment=-1,
+            value=float(q_cmd[k, j]),
+            limit=float(lo[j] if q_cmd[k, j] < lo[j] else hi[j]),
+        )
+
+
+def rollout(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    binding: RobotBinding,
+    q_cmd: FloatArray,
+    tool_ref: FloatArray,
+    *,
+    task: str,
+    trajectory: str,
+    settle_s: float = 0.5,
+    presettle_s: float = 0.5,
+    gripper_cmd: Callable[[float], float] | None = None,
+    on_step: StepHook | None = None,
+) -> PlaybackLog:
+    """Play commanded joints sampled at every physics step and record what happened.
+
+    The robot is put at rest at ``q_cmd[0]`` and held there for ``presettle_s``
+    (not recorded: it lets gravity load the servos), then sample ``k`` is the
+    target during step ``k``; after the last sample the final command is held
+    for ``settle_s``. After every step, positions and contacts are brought to
+    the new state (``mj_step`` leaves those of the state it started from), so
+    that every record describes the instant ``data.time`` it is stamped with.
+
+    Args:
+        model: The model.
+        data: Its data (reset here).
+        binding: What to drive and watch.
+        q_cmd: Commands, (T, n) [rad], one per physics step (``T * dt`` = duration).
+        tool_ref: Commanded tool point per sample, (T, 3) [m]; the last is the target.
+        task: Task name for the log.
+        trajectory: Trajectory type name for the log.
+        settle_s: Hold time after the trajectory [s].
+        presettle_s: Hold time before it, unrecorded [s].
+        gripper_cmd: Gripper opening [m] as a function of time [s], from
+            ``-presettle_s`` to the end of the settling.
+        on_step: Called after every recorded step (robot monitors, progress).
+
+    Returns:
+        The :class:`PlaybackLog`.
+
+    Raises:
+        InvalidInputError: Shapes disagree, or commands are not finite.
+        LimitViolationError: A command leaves its joint's range (names joint and time).
+    """
+    q_cmd = np.asarray(q_cmd, dtype=float)
+    tool_ref = np.asarray(tool_ref, dtype=float)
+    n = len(binding.actuator_ids)
+    if q_cmd.ndim != 2 or q_cmd.shape[1] != n or len(q_cmd) == 0:
+        raise InvalidInputError(f"q_cmd must have shape (T, {n}), got {q_cmd.shape}")
+    if tool_ref.shape != (len(q_cmd), 3):
+        raise InvalidInputError(f"tool_ref must have shape ({len(q_cmd)}, 3), got {tool_ref.shape}")
+    if not (np.isfinite(q_cmd).all() and np.isfinite(tool_ref).all()):
+        raise InvalidInputError("commands must be finite")
+    dt = float(model.opt.timestep)
+    _check_ranges(model, binding, q_cmd, dt)
+    settle_steps = round(settle_s / dt)
+    steps = len(q_cmd) + settle_steps
+
+    mujoco.mj_resetData(model, data)
+    data.qpos[binding.qpos_adr] = q_cmd[0]
+    data.ctrl[binding.actuator_ids] = q_cmd[0]
+    gripper = binding.gripper_actuator_id if gripper_cmd is not None else None
+    mujoco.mj_forward(model, data)
+    presettle_steps = round(presettle_s / dt)
+    for k in range(presettle_steps):
+        if gripper is not None and gripper_cmd is not None:
+            data.ctrl[gripper] = gripper_cmd((k - presettle_steps) * dt)
+        mujoco.mj_step(model, data)
+    data.time = 0.0  # the record starts here; warnings of the hold still count
+
+    groups = binding.groups
+    n_obstacles = len(groups.obstacle_geoms)
+    fromto = np.zeros(6)
+    log_qpos = np.empty((steps, model.nq))
+    log_q = np.empty((steps, n))
+    log_tool = np.empty((steps, 3))
+    log_force = np.empty((steps, n))
+    log_t = np.empty(steps)
+    clearance = np.empty((steps, n_obstacles))
+    c_step: list[IntArray] = []
+    c_geoms: list[IntArray] = []
+    c_dist: list[FloatArray] = []
+    diverged_at: float | None = None
+    recorded = steps
+
+    for k in range(steps):
+        data.ctrl[binding.actuator_ids] = q_cmd[min(k, len(q_cmd) - 1)]
+        if gripper is not None and gripper_cmd is not None:
+            data.ctrl[gripper] = gripper_cmd(k * dt)
+        mujoco.mj_step(model, data)
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
+            diverged_at = float(data.time)
+            recorded = k
+            break
+        log_t[k] = data.time
+        log_qpos[k] = data.qpos
+        log_q[k] = data.qpos[binding.qpos_adr]
+        log_tool[k] = data.site_xpos[binding.tool_site_id]
+        log_force[k] = data.actuator_force[binding.actuator_ids]
+        ncon = int(data.ncon)
+        if ncon:
+            geoms = np.array(data.contact.geom[:ncon], dtype=np.intp)
+            dist = np.array(data.contact.dist[:ncon])
+            c = classify_contacts(groups, geoms, dist)
+            keep = c.obstacle | c.self_hit | c.support
+            if keep.any():
+                c_step.append(np.full(int(keep.sum()), k, dtype=np.intp))
+                c_geoms.append(geoms[keep])
+                c_dist.append(dist[keep])
+        if n_obstacles:
+            clearance[k] = clearances(model, data, groups, fromto=fromto)
+        if on_step is not None:
+            on_step(k, data)
+
+    cmd = np.concatenate([q_cmd, np.repeat(q_cmd[-1:], settle_steps, axis=0)])[:recorded]
+    ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
+    meta = LogMeta(
+        task=task,
+        trajectory=trajectory,
+        physics_dt_s=dt,
+        geom_names=tuple(model.geom(g).name for g in range(model.ngeom)),
+        groups=groups,
+        force_limit=np.abs(np.asarray(model.actuator_forcerange)[binding.actuator_ids]).max(axis=1),
+    )
+    return PlaybackLog(
+        meta=meta,
+        time_s=log_t[:recorded],
+        qpos=log_qpos[:recorded],
+        q_cmd=cmd,
+        q=log_q[:recorded],
+        tool_ref=ref,
+        tool=log_tool[:recorded],
+        force=log_force[:recorded],
+        clearance_m=clearance[:recorded],
+        contact_step=np.concatenate(c_step) if c_step else np.zeros(0, dtype=np.intp),
+        contact_geoms=np.concatenate(c_geoms) if c_geoms else np.zeros((0, 2), dtype=np.intp),
+        contact_dist=np.concatenate(c_dist) if c_dist else np.zeros(0),
+        trajectory_steps=min(len(q_cmd), recorded),
+        duration_s=len(q_cmd) * dt,
+        settle_s=settle_steps * dt,
+        tool_target=tool_ref[-1].copy(),
+        warnings=mujoco_warnings(data),
+        diverged_at_s=diverged_at,
+    )

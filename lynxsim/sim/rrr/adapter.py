@@ -1,0 +1,63 @@
+"""The 3-RRR's row of the robot table (:mod:`lynxsim.robots`): a task to a played platform path."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+
+from lynxsim.rrr.path import PlatformPath
+from lynxsim.sim.recording import ProgressFn
+from lynxsim.sim.render import RenderSettings
+from lynxsim.sim.rrr.model import HOME_MODE
+from lynxsim.sim.rrr.task import path_from_task, run_rrr_path
+from lynxsim.sim.summary import Playback
+from lynxsim.tasks import Task
+
+__all__ = ["ADAPTER", "RRRAdapter", "RRRRun"]
+
+
+@dataclass(frozen=True)
+class RRRRun:
+    """A 3-RRR task's platform path, ready to play.
+
+    Attributes:
+        task: The task.
+        path: Its timed platform path.
+    """
+
+    task: Task
+    path: PlatformPath
+
+    @property
+    def label(self) -> str:
+        """The path's type name."""
+        return self.path.label
+
+    def run(
+        self,
+        *,
+        video: str | os.PathLike[str] | None,
+        render: RenderSettings,
+        progress: ProgressFn | None,
+        mode: int = HOME_MODE,
+    ) -> Playback:
+        """Play it through the actuated joints, IK in working mode ``mode`` (0..7)."""
+        return run_rrr_path(
+            self.path, task=self.task.name, mode=mode, video=video, render=render, progress=progress
+        )
+
+
+@dataclass(frozen=True)
+class RRRAdapter:
+    """The 3-RRR's simulation side for the command line and the demo."""
+
+    default_camera: str = "top"
+    options: frozenset[str] = frozenset({"mode"})
+
+    def prepare(self, task: Task, kind: str | None) -> RRRRun:
+        """Plan the task's platform path of type ``kind`` (None: the task's own)."""
+        return RRRRun(task, path_from_task(task, kind))
+
+
+ADAPTER = RRRAdapter()
+"""The adapter the robot table names."""

@@ -1,1 +1,0 @@
-"""MJCF models shipped with lynxsim (the repository's top-level models/ folder)."""

@@ -1,0 +1,1 @@
+"""Tests of the ``lynxsim`` command line (lynxsim.cli)."""
