@@ -21,12 +21,13 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 import mujoco
 import numpy as np
 
+from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.render import Quality, RenderSettings, SceneRenderer
 from lynxsim.sim.video import mp4_writer
 from lynxsim.tasks import load_task
-from lynxsim.traj import TrajectoryKind, build_trajectory
+from lynxsim.traj import TrajectoryKind
 
 ROOT = Path(__file__).resolve().parents[1]
 FRAMES = 60

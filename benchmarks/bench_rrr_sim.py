@@ -28,10 +28,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.arm.playback import physics_grid
 from lynxsim.sim.rrr.model import RRRIds, load_rrr_scene
 from lynxsim.sim.rrr.playback import play_rrr, start_model
-from lynxsim.sim.rrr.task import path_from_task
 from lynxsim.tasks import load_task
 
 TASK = Path(__file__).resolve().parents[1] / "tasks" / "rrr_closed_curve.toml"

@@ -15,8 +15,9 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
+from lynxsim.arm.task import build_trajectory
 from lynxsim.tasks import load_task
-from lynxsim.traj import TrajectoryKind, build_trajectory
+from lynxsim.traj import TrajectoryKind
 
 TASK = Path(__file__).resolve().parents[1] / "tasks" / "pick_and_place.toml"
 RATE_HZ = 500.0

@@ -1,26 +1,44 @@
-"""The robot table: a task's ``robot`` name to its kinematics, model and simulation adapter.
+"""The robot table: a task's ``robot`` name to its kinematics, motion builder, model and adapter.
 
 No other module branches on a robot's name: it looks the robot up here. A row
 names its parts by import path, so that reading the table imports neither
 MuJoCo nor the robot's code; :func:`sim_adapter` imports the adapter on demand.
 
-A third robot adds: its kinematics folder (``lynxsim/<robot>/``), its model
+A third robot adds: its kinematics folder (``lynxsim/<robot>/``, with a
+``task.py`` that turns a task into its motion), its model
 (``lynxsim/models/<robot>/``), its simulation adapter (``lynxsim/sim/<robot>/``),
-and one row here.
+and one row here. Its task files reuse one of the pose schemas
+(:data:`PoseSchema`); a robot with a new kind of pose adds its reader to
+:mod:`lynxsim.tasks`.
 """
 
 from __future__ import annotations
 
 import importlib
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any, Literal, Protocol
 
 from lynxsim.errors import InvalidInputError
 
 if TYPE_CHECKING:
     from lynxsim.tasks import Task
 
-__all__ = ["ROBOTS", "PreparedRun", "RobotEntry", "SimAdapter", "robot", "sim_adapter"]
+__all__ = [
+    "ROBOTS",
+    "PoseSchema",
+    "PreparedRun",
+    "RobotEntry",
+    "SimAdapter",
+    "motion_builder",
+    "robot",
+    "sim_adapter",
+]
+
+PoseSchema = Literal["tool", "platform"]
+"""How a task file writes a robot's poses: ``"tool"`` (``position_mm``,
+``pitch_deg``, ``roll_deg`` or ``q_deg``: a serial arm's tool) or ``"platform"``
+(``x_mm``, ``y_mm``, ``alpha_deg``: a planar platform)."""
 
 
 class PreparedRun(Protocol):
@@ -59,6 +77,9 @@ class RobotEntry:
         name: The task files' ``robot`` value.
         title: Human name.
         kinematics: Module of its pure kinematics.
+        poses: The pose schema of its task files.
+        scene: Whether it stands in the table scene (obstacles and a cube).
+        motion: ``"module:function"`` building a task's motion, ``(task, kind) -> motion``.
         model: Its MJCF scene, relative to ``lynxsim/models``.
         adapter: ``"module:attribute"`` of its :class:`SimAdapter`.
     """
@@ -66,6 +87,9 @@ class RobotEntry:
     name: str
     title: str
     kinematics: str
+    poses: PoseSchema
+    scene: bool
+    motion: str
     model: str
     adapter: str
 
@@ -75,6 +99,9 @@ ROBOTS: dict[str, RobotEntry] = {
         name="arm",
         title="Lynxmotion 5-DOF arm",
         kinematics="lynxsim.arm",
+        poses="tool",
+        scene=True,
+        motion="lynxsim.arm.task:build_trajectory",
         model="lynx_arm/scene.xml",
         adapter="lynxsim.sim.arm.adapter:ADAPTER",
     ),
@@ -82,6 +109,9 @@ ROBOTS: dict[str, RobotEntry] = {
         name="rrr",
         title="planar 3-RRR parallel robot",
         kinematics="lynxsim.rrr",
+        poses="platform",
+        scene=False,
+        motion="lynxsim.rrr.task:path_from_task",
         model="rrr/scene.xml",
         adapter="lynxsim.sim.rrr.adapter:ADAPTER",
     ),
@@ -101,8 +131,23 @@ def robot(name: str) -> RobotEntry:
     return entry
 
 
+def _attribute(path: str) -> Any:
+    module, _, attribute = path.partition(":")
+    return getattr(importlib.import_module(module), attribute)
+
+
 def sim_adapter(name: str) -> SimAdapter:
     """The simulation adapter of a robot (imports MuJoCo)."""
-    module, _, attribute = robot(name).adapter.partition(":")
-    adapter: SimAdapter = getattr(importlib.import_module(module), attribute)
+    adapter: SimAdapter = _attribute(robot(name).adapter)
     return adapter
+
+
+def motion_builder(name: str) -> Callable[[Task, str | None], Any]:
+    """The function that builds a robot's task into its motion (pure: no MuJoCo).
+
+    It takes the task and a trajectory type (None: the task's own) and returns
+    the robot's motion (a joint :class:`~lynxsim.traj.Trajectory` for the arm, a
+    :class:`~lynxsim.rrr.path.PlatformPath` for the 3-RRR).
+    """
+    builder: Callable[[Task, str | None], Any] = _attribute(robot(name).motion)
+    return builder

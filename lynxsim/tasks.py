@@ -78,20 +78,18 @@ import dataclasses
 import math
 import os
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, get_args
+from typing import Any
 
 from lynxsim.errors import InvalidInputError, TaskFileError
+from lynxsim.robots import ROBOTS, PoseSchema
 from lynxsim.scene import REPORT_CUBE, TABLE, Box, Cube, Cylinder, Obstacle, Scene, Sphere
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.waypoints import ArmPose, JointPose
 
-__all__ = ["PlanarPose", "Robot", "Task", "TaskPose", "find_tasks", "load_task"]
-
-Robot = Literal["arm", "rrr"]
-"""The robots a task can name."""
+__all__ = ["PlanarPose", "Task", "TaskPose", "find_tasks", "load_task"]
 
 _MM = 1e-3
 
@@ -123,7 +121,7 @@ class Task:
 
     Attributes:
         name: Task name.
-        robot: ``"arm"`` or ``"rrr"``.
+        robot: A row of the robot table (:data:`lynxsim.robots.ROBOTS`): ``"arm"`` or ``"rrr"``.
         poses: The poses in order, SI units (at least two).
         trajectory: The default trajectory type.
         durations: Duration of every segment [s], or ``None`` for the shortest
@@ -137,7 +135,7 @@ class Task:
     """
 
     name: str
-    robot: Robot
+    robot: str
     poses: tuple[TaskPose, ...]
     trajectory: TrajectoryKind
     durations: tuple[float, ...] | None = None
@@ -150,8 +148,8 @@ class Task:
 
 _TOP_KEYS = ("name", "description", "robot", "trajectory", "poses", "obstacles", "cube")
 _TRAJECTORY_KEYS = ("type", "segment_duration_s", "stretch", "pass_through")
-_ARM_POSE_KEYS = ("name", "position_mm", "pitch_deg", "roll_deg", "q_deg")
-_RRR_POSE_KEYS = ("name", "x_mm", "y_mm", "alpha_deg")
+_TOOL_POSE_KEYS = ("name", "position_mm", "pitch_deg", "roll_deg", "q_deg")
+_PLATFORM_POSE_KEYS = ("name", "x_mm", "y_mm", "alpha_deg")
 _SHAPE_KEYS: dict[str, tuple[str, ...]] = {
     "cylinder": ("name", "shape", "position_mm", "radius_mm", "height_mm"),
     "box": ("name", "shape", "position_mm", "size_mm", "yaw_deg"),
@@ -252,7 +250,7 @@ class _Reader:
         return table[key]
 
 
-def _arm_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> ArmPose | JointPose:
+def _tool_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> ArmPose | JointPose:
     if "q_deg" in raw:
         extra = sorted(set(raw) & {"position_mm", "pitch_deg", "roll_deg"})
         if extra:
@@ -272,12 +270,20 @@ def _arm_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> ArmP
     return ArmPose((x, y, z), math.radians(pitch), roll, name)
 
 
-def _rrr_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> PlanarPose:
+def _platform_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> PlanarPose:
     x, y, alpha = (
         r.number(r.required(raw, key, f"{field}.{key}"), f"{field}.{key}")
         for key in ("x_mm", "y_mm", "alpha_deg")
     )
     return PlanarPose(x * _MM, y * _MM, math.radians(alpha), name)
+
+
+_PoseReader = Callable[["_Reader", Mapping[str, Any], str, str], TaskPose]
+_POSE_SCHEMAS: dict[PoseSchema, tuple[tuple[str, ...], _PoseReader]] = {
+    "tool": (_TOOL_POSE_KEYS, _tool_pose),
+    "platform": (_PLATFORM_POSE_KEYS, _platform_pose),
+}
+"""Each pose schema of the robot table: its keys and its reader."""
 
 
 def _m(mm: float) -> float:
@@ -413,11 +419,10 @@ def _scene(r: _Reader, top: Mapping[str, Any]) -> Scene:
 def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     r = _Reader(path)
     top = r.table(data, "", _TOP_KEYS)
-    robot_name = r.string(r.required(top, "robot", "robot"), "robot")
-    robots: tuple[Robot, ...] = get_args(Robot)
-    robot = next((rb for rb in robots if rb == robot_name), None)
-    if robot is None:
-        raise r.fail("robot", f"unknown robot {robot_name!r}; expected one of: {', '.join(robots)}")
+    robot = r.string(r.required(top, "robot", "robot"), "robot")
+    entry = ROBOTS.get(robot)
+    if entry is None:
+        raise r.fail("robot", f"unknown robot {robot!r}; expected one of: {', '.join(ROBOTS)}")
     name = r.string(top.get("name", default_name), "name")
     description = r.string(top.get("description", ""), "description")
 
@@ -434,7 +439,7 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     raw_poses = r.required(top, "poses", "poses")
     if not isinstance(raw_poses, list) or len(raw_poses) < 2:
         raise r.fail("poses", "must be an array of at least two [[poses]] tables")
-    pose_keys = _ARM_POSE_KEYS if robot == "arm" else _RRR_POSE_KEYS
+    pose_keys, read_pose = _POSE_SCHEMAS[entry.poses]
     poses: list[TaskPose] = []
     for i, item in enumerate(raw_poses):
         field = f"poses[{i}]"
@@ -442,10 +447,7 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         pose_name = r.string(raw.get("name", f"P{i + 1}"), f"{field}.name")
         if any(p.name == pose_name for p in poses):
             raise r.fail(f"{field}.name", f"duplicate pose name {pose_name!r}")
-        if robot == "arm":
-            poses.append(_arm_pose(r, raw, field, pose_name))
-        else:
-            poses.append(_rrr_pose(r, raw, field, pose_name))
+        poses.append(read_pose(r, raw, field, pose_name))
 
     durations: tuple[float, ...] | None = None
     if "segment_duration_s" in traj:
@@ -459,13 +461,13 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         else:
             durations = (r.positive(raw_d, field),) * n
 
-    if robot == "rrr":
+    if entry.scene:
+        scene = _scene(r, top)
+    else:
         for key in ("obstacles", "cube"):
             if key in top:
-                raise r.fail(key, "the 3-RRR scene has no obstacles or cube yet; remove it")
+                raise r.fail(key, f"the {entry.title} has no obstacles or cube yet; remove it")
         scene = Scene(obstacles=(), cube=None)
-    else:
-        scene = _scene(r, top)
 
     return Task(
         name=name,
@@ -481,7 +483,7 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     )
 
 
-def find_tasks(folder: str | os.PathLike[str], robot: Robot) -> list[Task]:
+def find_tasks(folder: str | os.PathLike[str], robot: str) -> list[Task]:
     """Every task file (``*.toml``) of ``folder`` for ``robot``, sorted by file name.
 
     Raises:

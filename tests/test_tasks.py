@@ -13,6 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lynxsim.arm.fk import FRAME_NAMES, frame_origins
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import TaskFileError
 from lynxsim.scene import (
     REPORT_CUBE,
@@ -26,7 +27,7 @@ from lynxsim.scene import (
     Sphere,
 )
 from lynxsim.tasks import PlanarPose, Task, load_task
-from lynxsim.traj import ArmPose, JointPose, TrajectoryKind, build_trajectory
+from lynxsim.traj import ArmPose, JointPose, TrajectoryKind
 
 TASKS = Path(__file__).resolve().parents[1] / "tasks"
 
@@ -655,7 +656,7 @@ def test_rrr_tasks_refuse_a_scene(tmp_path, extra):
     with pytest.raises(TaskFileError) as info:
         load_task(path)
     assert str(info.value) == (
-        f"{path}: {key}: the 3-RRR scene has no obstacles or cube yet; remove it"
+        f"{path}: {key}: the planar 3-RRR parallel robot has no obstacles or cube yet; remove it"
     )
 
 

@@ -15,11 +15,12 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from lynxsim.arm import tool_pose
+from lynxsim.arm.task import build_trajectory
 from lynxsim.cli.units import positive_float
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import atomic_path
 from lynxsim.tasks import Task, load_task
-from lynxsim.traj import Trajectory, TrajectoryKind, build_trajectory
+from lynxsim.traj import Trajectory, TrajectoryKind
 
 __all__ = ["register"]
 

@@ -12,13 +12,14 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LynxsimError
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.tasks import Task
-from lynxsim.traj import Trajectory, TrajectoryKind, build_trajectory
+from lynxsim.traj import Trajectory, TrajectoryKind
 
 __all__ = ["DemoRun", "arm_runs", "run_arm_demo"]
 

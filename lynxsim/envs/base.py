@@ -184,7 +184,6 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         )
         self.control = _enum(ControlMode, control, "control")
         self.reward_type = _enum(RewardType, reward_type, "reward_type")
-        self._sparse = self.reward_type is RewardType.SPARSE
         self.collision_check = _enum(CollisionCheck, collision_check, "collision_check")
         if not (math.isfinite(distance_threshold) and distance_threshold > 0.0):
             raise InvalidInputError(f"distance_threshold must be > 0 m, got {distance_threshold}")
@@ -439,14 +438,9 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
 
     def _info(self, obs: Obs, collision: bool, status: TargetStatus) -> dict[str, Any]:
         """The info dict of a step (and, with no collision and status ACCEPTED, of a reset)."""
-        ag = obs["achieved_goal"].tolist()
-        g = self._goal_list
-        dx, dy, dz = ag[0] - g[0], ag[1] - g[1], ag[2] - g[2]
-        distance = math.sqrt(dx * dx + dy * dy + dz * dz)
-        if self._sparse:
-            reward_goal = -1.0 if distance > self.distance_threshold else 0.0
-        else:
-            reward_goal = -distance
+        d = goal_distance(obs["achieved_goal"], self._goal)
+        distance = float(d)
+        reward_goal = float(goal_reward(d, self.distance_threshold, self.reward_type))
         return {
             "is_success": distance <= self.distance_threshold,
             "collision": collision,
@@ -503,16 +497,10 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._tool_now = (x, y, z)
         return x, y, z, pitch, (x - px) * rate, (y - py) * rate, (z - pz) * rate
 
-    @property
-    def _goal_list(self) -> list[float]:
-        return self._goal_floats
-
     def _set_goal(self, goal: npt.ArrayLike) -> None:
         """Set the episode's goal, shape (3,) [m], and move the table mark below it."""
         self._goal = np.array(goal, dtype=np.float64).reshape(3)
-        self._goal_floats: list[float] = self._goal.tolist()
-        mark = self.model.site_pos[self._goal_mark]
-        mark[0], mark[1] = self._goal_floats[0], self._goal_floats[1]
+        self.model.site_pos[self._goal_mark, :2] = self._goal[:2]
 
     @property
     def goal(self) -> FloatArray:

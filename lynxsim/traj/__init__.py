@@ -9,7 +9,7 @@ limits), and returns a checked :class:`Trajectory` sampled by time::
     q, qd, qdd, qddd = traj.sample(t)
 """
 
-from lynxsim.traj.build import build_trajectory, generate
+from lynxsim.traj.build import generate
 from lynxsim.traj.cartesian import LineSegment, cartesian_line
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
@@ -41,7 +41,6 @@ __all__ = [
     "TrajectorySample",
     "Waypoints",
     "WaypointsLike",
-    "build_trajectory",
     "cartesian_line",
     "check_trajectory",
     "cubic",

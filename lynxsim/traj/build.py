@@ -1,8 +1,6 @@
-"""Build a trajectory of any type: from waypoints, or from a task."""
+"""Build a trajectory of any type from waypoints."""
 
 from __future__ import annotations
-
-from typing import TYPE_CHECKING
 
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError
@@ -14,12 +12,9 @@ from lynxsim.traj.polynomial import cubic, free_motion, quintic
 from lynxsim.traj.ruckig_profile import ruckig_trajectory
 from lynxsim.traj.timing import Durations
 from lynxsim.traj.trajectory import Trajectory
-from lynxsim.traj.waypoints import ArmPose, JointPose, WaypointsLike
+from lynxsim.traj.waypoints import WaypointsLike
 
-if TYPE_CHECKING:
-    from lynxsim.tasks import Task
-
-__all__ = ["build_trajectory", "generate"]
+__all__ = ["generate"]
 
 _GENERATORS = {
     TrajectoryKind.FREE: free_motion,
@@ -30,7 +25,7 @@ _GENERATORS = {
 }
 
 
-def _kind(kind: TrajectoryKind | str) -> TrajectoryKind:
+def parse_kind(kind: TrajectoryKind | str) -> TrajectoryKind:
     try:
         return TrajectoryKind(kind)
     except ValueError:
@@ -68,7 +63,7 @@ def generate(
         InvalidInputError: Unknown type, or ``pass_through`` for a type that stops.
         LynxsimError: Whatever the generator raises (see each generator).
     """
-    kind = _kind(kind)
+    kind = parse_kind(kind)
     if kind is TrajectoryKind.RUCKIG:
         return ruckig_trajectory(
             waypoints,
@@ -82,41 +77,4 @@ def generate(
         raise InvalidInputError(f"pass_through applies to ruckig trajectories, not {kind.value}")
     return _GENERATORS[kind](
         waypoints, durations, limits=limits, stretch=stretch, geometry=geometry
-    )
-
-
-def build_trajectory(
-    task: Task,
-    kind: TrajectoryKind | str | None = None,
-    limits: JointLimits | None = None,
-) -> Trajectory:
-    """The trajectory of a task, of its own type or another.
-
-    Args:
-        task: The task (see :func:`lynxsim.tasks.load_task`).
-        kind: Trajectory type overriding the task's; ``None`` keeps it.
-        limits: Joint limits; ``None`` for :data:`~lynxsim.traj.limits.DEFAULT_LIMITS`.
-
-    Returns:
-        The checked :class:`Trajectory`, with the task's poses as its targets.
-
-    Raises:
-        InvalidInputError: The task is not for the arm, or the type is unknown.
-        LynxsimError: Whatever the generator raises (unreachable pose, limits).
-    """
-    poses = [p for p in task.poses if isinstance(p, ArmPose | JointPose)]
-    if len(poses) != len(task.poses):
-        raise InvalidInputError(
-            f"task {task.name!r} is for robot {task.robot!r}; joint trajectories are built "
-            "from arm poses only"
-        )
-    chosen = task.trajectory if kind is None else _kind(kind)
-    return generate(
-        chosen,
-        poses,
-        task.durations,
-        limits=DEFAULT_LIMITS if limits is None else limits,
-        stretch=task.stretch,
-        pass_through=task.pass_through and chosen is TrajectoryKind.RUCKIG,
-        geometry=LYNX_ARM,
     )

@@ -27,10 +27,11 @@ JOINT_RAD = 1e-7
 """Round-trip agreement of joint angles [rad]."""
 REPORT_DEG = 0.01
 """Agreement with the report's printed joint angles [deg]."""
-SINGLE_CALL_RAD = 1e-12
+SINGLE_CALL_RAD = 2e-14
 """Agreement of ``ik_one`` (the closed form in :mod:`math`) with the batch IK (in NumPy)
-[rad]: the same operations, but libm's atan2 and hypot and NumPy's vectorised ones may
-differ in the last digit (was 0 while ``ik_one`` called the batch IK)."""
+[rad]: the same operations, but libm's and NumPy's atan2/acos/hypot may differ in the
+last digit, and the chain of them carries it on. Measured over 20,000 random joint
+vectors: at most 5.8e-15 rad (26 ulp of 1 rad); the bound leaves a factor of 3."""
 
 EXAMPLES = 500
 

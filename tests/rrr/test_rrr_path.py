@@ -17,8 +17,8 @@ from lynxsim.rrr.path import (
     actuated_window,
     platform_path,
 )
+from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.rrr.model import HOME_POSE
-from lynxsim.sim.rrr.task import path_from_task
 from lynxsim.tasks import load_task
 from tests.helpers import assert_close
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_D, FIGURE20_E

@@ -15,10 +15,11 @@ from lynxsim.cli import main
 from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import platform_path
+from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.render import Quality, RenderSettings
 from lynxsim.sim.rrr.model import HOME_POSE, load_rrr_scene
 from lynxsim.sim.rrr.playback import RRRMetrics, play_rrr
-from lynxsim.sim.rrr.task import path_from_task, run_rrr_path
+from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.tasks import load_task
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_F
 

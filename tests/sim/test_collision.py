@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import ik_one
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.reproduce.arm_tables import TABLE4
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE, TABLE, Box, Cylinder, Scene, Sphere
@@ -24,7 +25,7 @@ from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.collision import CLEARANCE_CAP_M, CollisionChecker, classify_contacts
 from lynxsim.sim.rollout import PlaybackLog
 from lynxsim.tasks import load_task
-from lynxsim.traj import TrajectoryKind, build_trajectory
+from lynxsim.traj import TrajectoryKind
 from tests.helpers import assert_close
 
 ROOT = Path(__file__).resolve().parents[2]

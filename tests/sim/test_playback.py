@@ -10,6 +10,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LimitViolationError
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
@@ -17,7 +18,7 @@ from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.rollout import rollout
 from lynxsim.tasks import load_task
-from lynxsim.traj import ArmPose, TrajectoryKind, build_trajectory, generate
+from lynxsim.traj import ArmPose, TrajectoryKind, generate
 
 ROOT = Path(__file__).resolve().parents[2]
 PICK_AND_PLACE = ROOT / "tasks" / "pick_and_place.toml"

@@ -11,12 +11,13 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import tool_pose
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, OutOfReachError
 from lynxsim.plots.obstacles import inside_any
 from lynxsim.reproduce.arm_tables import TABLE4
 from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.tasks import PlanarPose, Task, load_task
-from lynxsim.traj import ArmPose, TrajectoryKind, build_trajectory, generate
+from lynxsim.traj import ArmPose, TrajectoryKind, generate
 from tests.helpers import assert_close
 
 TASKS = Path(__file__).resolve().parents[2] / "tasks"

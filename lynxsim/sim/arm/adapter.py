@@ -5,12 +5,13 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import Task
-from lynxsim.traj import Trajectory, build_trajectory
+from lynxsim.traj import Trajectory
 
 __all__ = ["ADAPTER", "ArmAdapter", "ArmRun"]
 

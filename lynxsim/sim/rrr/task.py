@@ -7,74 +7,20 @@ import os
 import mujoco
 import numpy as np
 
-from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.path import (
-    DEFAULT_PLATFORM_LIMITS,
-    RRR_TRAJECTORY_KINDS,
-    PlatformLimits,
-    PlatformPath,
-    platform_path,
-)
+from lynxsim.rrr.path import PlatformPath
+from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr.model import HOME_MODE, RRRIds
 from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.summary import Playback
-from lynxsim.tasks import PlanarPose, Task
+from lynxsim.tasks import Task
 from lynxsim.traj.kinds import TrajectoryKind
 
-__all__ = ["DEFAULT_RRR_RENDER", "path_from_task", "run_rrr_path", "run_rrr_task"]
+__all__ = ["DEFAULT_RRR_RENDER", "run_rrr_path", "run_rrr_task"]
 
 DEFAULT_RRR_RENDER = RenderSettings(camera="top")
 """Video defaults for the 3-RRR: 640x480 at 30 frames/s from the orthographic top camera."""
-
-
-def path_from_task(
-    task: Task,
-    kind: TrajectoryKind | str | None = None,
-    limits: PlatformLimits = DEFAULT_PLATFORM_LIMITS,
-) -> PlatformPath:
-    """The timed platform path of a 3-RRR task.
-
-    Args:
-        task: A task with ``robot = "rrr"`` (:func:`lynxsim.tasks.load_task`).
-        kind: Trajectory type overriding the task's; only
-            :data:`~lynxsim.rrr.path.RRR_TRAJECTORY_KINDS` are planned for the 3-RRR.
-        limits: Task-space limits for missing or stretched durations.
-
-    Returns:
-        The :class:`~lynxsim.rrr.path.PlatformPath` (``pass_through`` gives
-        one spline through the poses).
-
-    Raises:
-        InvalidInputError: The task is not for the 3-RRR, or the type is not
-            planned for it (the message lists those that are).
-        SegmentDurationError: A duration is too short and ``stretch`` is off.
-    """
-    poses = [p for p in task.poses if isinstance(p, PlanarPose)]
-    if len(poses) != len(task.poses):
-        raise InvalidInputError(
-            f"task {task.name!r} is for robot {task.robot!r}; its poses are not platform poses"
-        )
-    names = [k.value for k in TrajectoryKind]
-    if kind is not None and str(kind) not in names:
-        raise InvalidInputError(
-            f"unknown trajectory type {kind!r}; expected one of: {', '.join(names)}"
-        )
-    chosen = task.trajectory if kind is None else TrajectoryKind(kind)
-    if chosen not in RRR_TRAJECTORY_KINDS:
-        raise InvalidInputError(
-            f"trajectory type {chosen.value!r} is not planned for the 3-RRR robot; "
-            f"expected one of: {', '.join(k.value for k in RRR_TRAJECTORY_KINDS)}"
-        )
-    return platform_path(
-        np.array([[p.x, p.y, p.alpha] for p in poses]),
-        task.durations,
-        names=[p.name for p in poses],
-        through=task.pass_through,
-        stretch=task.stretch,
-        limits=limits,
-    )
 
 
 def run_rrr_path(
