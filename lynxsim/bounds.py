@@ -16,12 +16,14 @@ from lynxsim.errors import InvalidInputError, NonFiniteInputError
 
 __all__ = [
     "MAX_CELLS",
+    "MAX_CONTROL_DT_S",
     "MAX_COORDINATE_M",
     "MAX_EPISODES",
     "MAX_FPS",
     "MAX_RATE_HZ",
     "MAX_SAMPLES",
     "MAX_SEGMENT_S",
+    "MAX_STEPS",
     "MIN_FPS",
     "MIN_RATE_HZ",
     "MIN_SEGMENT_S",
@@ -49,6 +51,10 @@ MAX_COORDINATE_M = 10.0
 """Largest magnitude of a position coordinate [m]; the robots reach well under 1 m."""
 MAX_EPISODES = 1_000_000
 """Most episodes of one command."""
+MAX_CONTROL_DT_S = 1.0
+"""Longest control period of an environment [s]."""
+MAX_STEPS = 100_000_000
+"""Most physics steps of one run (about 55 h of simulated time at 2 ms)."""
 
 
 def check_range(value: float, name: str, low: float, high: float, unit: str = "") -> float:
