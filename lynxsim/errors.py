@@ -177,3 +177,14 @@ __all__ += [
     "TaskFileError",
     "TrajectoryError",
 ]
+
+
+class OutputPathError(LynxsimError, ValueError):
+    """An output destination lynxsim will not write (a folder, FIFO, device or link)."""
+
+
+class VideoError(LynxsimError, OSError):
+    """The video encoder failed, or the file it wrote does not decode to the frames given."""
+
+
+__all__ += ["OutputPathError", "VideoError"]

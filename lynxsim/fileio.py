@@ -1,16 +1,109 @@
-"""Writing files safely: to a temporary name, renamed when complete."""
+"""Writing files safely: inside the asked folder, to a temporary name, renamed when complete.
+
+Names that come from files (a task's ``name``) never choose where output goes:
+:func:`safe_stem` turns them into a plain file stem, and :func:`output_path`
+places that stem inside the folder the user gave. :func:`atomic_path` writes
+beside the destination and renames only after the writer succeeded; it never
+replaces anything that is not a regular file (a folder, a FIFO, a device, a
+symbolic link).
+"""
 
 from __future__ import annotations
 
 import contextlib
 import json
 import os
+import re
+import stat
 import tempfile
+import unicodedata
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-__all__ = ["atomic_path", "write_json"]
+from lynxsim.errors import OutputPathError
+
+__all__ = [
+    "MAX_STEM",
+    "atomic_path",
+    "check_destination",
+    "file_stem",
+    "output_path",
+    "safe_stem",
+    "write_json",
+]
+
+MAX_STEM = 80
+"""Longest file stem made from a name (characters)."""
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._+-]+|\.{2,}")
+
+
+def safe_stem(name: str, fallback: str = "output") -> str:
+    """A file stem made from free text: ASCII letters, digits, ``. _ + -`` only.
+
+    Path separators, ``..``, control characters and everything else become ``_``;
+    accents are dropped (``é`` -> ``e``); leading dots and dashes are removed (no
+    hidden files, no names that read as options); at most :data:`MAX_STEM`
+    characters. Empty results give ``fallback``.
+
+    Args:
+        name: Any text, e.g. a task's name.
+        fallback: Stem used when nothing of ``name`` is left.
+    """
+    ascii_text = unicodedata.normalize("NFKD", name).encode("ascii", "ignore").decode("ascii")
+    stem = _UNSAFE.sub("_", ascii_text).lstrip(".-_")[:MAX_STEM].rstrip("._")
+    return stem or fallback
+
+
+def file_stem(*parts: str) -> str:
+    """Name pieces made safe (:func:`safe_stem`) and joined by ``_``, e.g. ``pick_quintic``."""
+    return "_".join(safe_stem(p) for p in parts)[: 2 * MAX_STEM]
+
+
+def output_path(folder: str | os.PathLike[str], *parts: str, suffix: str) -> Path:
+    """``folder / file_stem(*parts) + suffix``: always a file directly inside ``folder``.
+
+    Args:
+        folder: The folder the user gave (created on writing, not here).
+        parts: Name pieces, e.g. ``(task.name, "quintic")``; each made safe.
+        suffix: File suffix including the dot, e.g. ``".mp4"``.
+    """
+    return Path(folder) / f"{file_stem(*parts)}{suffix}"
+
+
+def check_destination(dest: str | os.PathLike[str]) -> Path:
+    """Refuse a destination that exists and is not a regular file, or whose folder cannot be.
+
+    Called before long work, so that a wrong ``--out`` fails in a second, and
+    again by :func:`atomic_path` just before writing.
+
+    Raises:
+        OutputPathError: ``dest`` is a folder, FIFO, device, socket or symbolic
+            link, or a part of its folder exists and is not a folder.
+    """
+    dest = Path(dest)
+    try:
+        mode = os.lstat(dest).st_mode
+    except (FileNotFoundError, NotADirectoryError):
+        mode = None
+    except OSError as exc:
+        raise OutputPathError(f"cannot write {dest}: {exc.strerror}") from None
+    if mode is not None and not stat.S_ISREG(mode):
+        kind = (
+            "a folder"
+            if stat.S_ISDIR(mode)
+            else "a symbolic link"
+            if stat.S_ISLNK(mode)
+            else "not a regular file"
+        )
+        raise OutputPathError(f"will not replace {dest}: it is {kind}")
+    for parent in dest.parents:
+        if parent.exists() or parent.is_symlink():
+            if not parent.is_dir():
+                raise OutputPathError(f"cannot write {dest}: {parent} is not a folder")
+            break
+    return dest
 
 
 @contextlib.contextmanager
@@ -18,13 +111,17 @@ def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path beside ``dest``; rename it to ``dest`` on success.
 
     The temporary name keeps ``dest``'s suffix (writers such as matplotlib and
-    imageio pick the format from it). On an exception the partial file is
-    removed and ``dest`` is left as it was.
+    imageio pick the format from it). On any exception (``KeyboardInterrupt``
+    and the CLI's SIGTERM included) the partial file is removed and ``dest`` is
+    left as it was.
+
+    Raises:
+        OutputPathError: See :func:`check_destination`.
     """
-    dest = Path(dest)
+    dest = check_destination(dest)
     dest.parent.mkdir(parents=True, exist_ok=True)
     fd, name = tempfile.mkstemp(
-        prefix=f".{dest.stem}.", suffix=f".tmp{dest.suffix}", dir=dest.parent
+        prefix=f".{dest.stem[:MAX_STEM]}.", suffix=f".tmp{dest.suffix}", dir=dest.parent
     )
     os.close(fd)
     tmp = Path(name)
@@ -34,6 +131,7 @@ def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
         umask = os.umask(0)
         os.umask(umask)
         tmp.chmod(0o666 & ~umask)
+        check_destination(dest)  # it may have changed while we wrote
         os.replace(tmp, dest)
     except BaseException:
         tmp.unlink(missing_ok=True)

@@ -9,8 +9,11 @@ stderr and exit non-zero, never a traceback.
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
+import threading
 from collections.abc import Sequence
+from types import FrameType
 from typing import Any, NoReturn
 
 from lynxsim.cli import arm, demo, env, play, rrr, traj
@@ -65,15 +68,40 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _Terminated(BaseException):
+    """SIGTERM arrived: unwinds like Ctrl-C, so that every partial output is removed."""
+
+
+def _on_sigterm(signum: int, frame: FrameType | None) -> NoReturn:
+    raise _Terminated
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code."""
+    """Run the command line; returns the exit code.
+
+    Ctrl-C exits 130 and SIGTERM 143, each after removing the partial outputs of
+    the run (temporary files of :func:`lynxsim.fileio.atomic_path`).
+    """
     args = build_parser().parse_args(argv)
+    in_main_thread = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
     try:
         code: int = args.handler(args)
     except (LynxsimError, OSError) as exc:
-        print(f"lynxsim: error: {exc}", file=sys.stderr)
+        print(f"lynxsim: error: {_one_line(exc)}", file=sys.stderr)
         return EXIT_ERROR
     except KeyboardInterrupt:
         print("lynxsim: interrupted", file=sys.stderr)
         return 130
+    except _Terminated:
+        print("lynxsim: terminated", file=sys.stderr)
+        return 128 + signal.SIGTERM
+    finally:
+        if in_main_thread:
+            signal.signal(signal.SIGTERM, previous)
     return code
+
+
+def _one_line(exc: BaseException) -> str:
+    """An error's message on one line (multi-line messages joined with ' | ')."""
+    return " | ".join(line.strip() for line in str(exc).splitlines() if line.strip())

@@ -13,7 +13,8 @@ from typing import Any
 import numpy as np
 
 from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
-from lynxsim.cli.units import Units, add_unit_flags, finite_float, json_list
+from lynxsim.bounds import MAX_SAMPLES
+from lynxsim.cli.units import Units, add_unit_flags, bounded_int, finite_float, json_list, seed_int
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["register"]
@@ -135,7 +136,12 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument(
         "--out", type=Path, default=Path("workspace.png"), metavar="FILE", help="PNG file to write"
     )
-    p.add_argument("--samples", type=int, default=1_000_000, help="joint samples (default 10^6)")
-    p.add_argument("--seed", type=int, default=0, help="random seed")
+    p.add_argument(
+        "--samples",
+        type=bounded_int(1, MAX_SAMPLES),
+        default=1_000_000,
+        help=f"joint samples, 1 to {MAX_SAMPLES:,} (default 10^6)",
+    )
+    p.add_argument("--seed", type=seed_int, default=0, help="random seed (0 to 2^63-1)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_workspace)

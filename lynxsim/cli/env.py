@@ -6,8 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
+from lynxsim.bounds import MAX_EPISODES
+from lynxsim.cli.units import bounded_int, seed_int
 from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
-from lynxsim.errors import InvalidInputError
 
 __all__ = ["register"]
 
@@ -17,8 +18,6 @@ def _run(args: argparse.Namespace) -> int:
 
     from lynxsim.envs.evaluation import EpisodeStats, evaluate
 
-    if args.episodes <= 0:
-        raise InvalidInputError(f"--episodes must be positive, got {args.episodes}")
     env_kwargs = {"obstacles": ()} if args.no_obstacle else {}
     done = successes = 0
     with tqdm(total=args.episodes, unit="ep", disable=args.quiet, file=sys.stderr) as bar:
@@ -67,12 +66,20 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "return and the arm-obstacle collisions.",
     )
     p.add_argument("--policy", choices=("expert", "random"), default="expert")
-    p.add_argument("--episodes", type=int, default=10, help="number of episodes (default 10)")
+    p.add_argument(
+        "--episodes",
+        type=bounded_int(1, MAX_EPISODES),
+        default=10,
+        help=f"number of episodes, 1 to {MAX_EPISODES:,} (default 10)",
+    )
     p.add_argument("--env", choices=ENV_IDS, default=PICK_AND_PLACE_ID, help="the env id")
-    p.add_argument("--seed", type=int, default=0, help="seed of the first episode (default 0)")
+    p.add_argument("--seed", type=seed_int, default=0, help="seed of the first episode (default 0)")
     p.add_argument("--video", type=Path, default=None, help="MP4 file of the first episode(s)")
     p.add_argument(
-        "--video-episodes", type=int, default=1, help="episodes recorded into --video (default 1)"
+        "--video-episodes",
+        type=bounded_int(1, 100),
+        default=1,
+        help="episodes recorded into --video (default 1)",
     )
     p.add_argument("--no-obstacle", action="store_true", help="remove the cylinder obstacle")
     p.add_argument("--quiet", action="store_true", help="no progress bar")

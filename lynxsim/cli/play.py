@@ -10,7 +10,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from lynxsim.cli.context import about_task
 from lynxsim.errors import InvalidInputError
+from lynxsim.fileio import check_destination, output_path
 from lynxsim.sim.report import RunReport
 
 if TYPE_CHECKING:
@@ -144,20 +146,27 @@ def _play(args: argparse.Namespace) -> int:
     options = {
         name: getattr(args, name) for name in _RUN_OPTIONS if getattr(args, name) is not None
     }
-    prepared = adapter.prepare(task, args.type)
-    out = args.out or Path("videos") / f"{task.name}_{prepared.label}.mp4"
+    with about_task(args.task):
+        prepared = adapter.prepare(task, args.type)
+    out = args.out or output_path("videos", task.name, prepared.label, suffix=".mp4")
+    if out.suffix.lower() != ".mp4":
+        raise InvalidInputError(f"--out must name an .mp4 file, got {out}")
+    check_destination(out.with_suffix(".json"))
+    if not args.no_video:
+        check_destination(out)
     update, close = progress_bar(f"{task.name} {prepared.label}", args.json or args.quiet)
     try:
-        playback = prepared.run(
-            video=None if args.no_video else out,
-            render=RenderSettings(
-                camera=args.camera or adapter.default_camera,
-                quality=Quality(args.quality),
-                fps=args.fps,
-            ),
-            progress=update,
-            **options,
-        )
+        with about_task(args.task):
+            playback = prepared.run(
+                video=None if args.no_video else out,
+                render=RenderSettings(
+                    camera=args.camera or adapter.default_camera,
+                    quality=Quality(args.quality),
+                    fps=args.fps,
+                ),
+                progress=update,
+                **options,
+            )
     finally:
         close()
     return _print_run(args, playback.report, None if args.no_video else out, out)
@@ -176,7 +185,8 @@ def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None, 
 
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``play`` sub-command."""
-    from lynxsim.cli.units import positive_float
+    from lynxsim.bounds import MAX_FPS, MIN_FPS
+    from lynxsim.cli.units import bounded_float
 
     p = sub.add_parser(
         "play",
@@ -224,7 +234,12 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default="default",
         help="rendering preset: fast (no shadows, no multisampling) or default",
     )
-    p.add_argument("--fps", type=positive_float, default=30.0, help="video frame rate [1/s]")
+    p.add_argument(
+        "--fps",
+        type=bounded_float(MIN_FPS, MAX_FPS, "frames/s"),
+        default=30.0,
+        help=f"video frame rate, {MIN_FPS:g} to {MAX_FPS:g} frames/s (default 30)",
+    )
     p.add_argument("--json", action="store_true", help="print the report as JSON (SI units)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_play)

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 
-from lynxsim.cli.units import Units, add_unit_flags, finite_float, json_list, positive_float
+from lynxsim.cli.units import Units, add_unit_flags, bounded_float, finite_float, json_list
+from lynxsim.errors import InvalidInputError
 from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, format_figure20_table
 from lynxsim.rrr import (
     N_MODES,
@@ -124,10 +125,18 @@ def _fk(args: argparse.Namespace) -> int:
     return 0
 
 
+MAX_ALPHAS = 12
+"""Most orientations of one workspace figure (one panel each)."""
+
+
 def _workspace(args: argparse.Namespace) -> int:
     from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
     from lynxsim.rrr.workspace import workspace_maps
 
+    if len(args.alpha_deg) > MAX_ALPHAS:
+        raise InvalidInputError(
+            f"--alpha-deg takes 1 to {MAX_ALPHAS} orientations, got {len(args.alpha_deg)}"
+        )
     alphas = [math.radians(a) for a in args.alpha_deg]
     maps = workspace_maps(alphas, view_extent(alphas), args.resolution_mm * 1e-3)
     plot_rrr_workspace(maps, args.out, mode=args.mode)
@@ -239,7 +248,12 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument(
         "--out", type=Path, default=Path("rrr_workspace.png"), metavar="FILE", help="PNG file"
     )
-    p.add_argument("--resolution-mm", type=positive_float, default=2.0, help="grid step [mm]")
+    p.add_argument(
+        "--resolution-mm",
+        type=bounded_float(0.1, 100.0, "mm"),
+        default=2.0,
+        help="grid step, 0.1 to 100 mm (default 2)",
+    )
     p.add_argument(
         "--mode",
         type=_mode_arg,

@@ -16,9 +16,11 @@ import numpy as np
 
 from lynxsim.arm import tool_pose
 from lynxsim.arm.task import build_trajectory
-from lynxsim.cli.units import positive_float
+from lynxsim.bounds import MAX_RATE_HZ, MAX_SEGMENT_S, MIN_RATE_HZ, MIN_SEGMENT_S
+from lynxsim.cli.context import about_task
+from lynxsim.cli.units import bounded_float
 from lynxsim.errors import InvalidInputError, LynxsimError
-from lynxsim.fileio import atomic_path
+from lynxsim.fileio import atomic_path, check_destination, output_path
 from lynxsim.tasks import Task, load_task
 from lynxsim.traj import Trajectory, TrajectoryKind
 
@@ -88,7 +90,7 @@ def _apply_overrides(task: Task, args: argparse.Namespace) -> Task:
     return task
 
 
-def _comparison(task: Task, out: Path) -> Path:
+def _comparison(task: Task, dest: Path) -> None:
     from lynxsim.plots.trajectory import plot_tool_paths
 
     trajectories = {}
@@ -97,14 +99,12 @@ def _comparison(task: Task, out: Path) -> Path:
             trajectories[kind.value] = build_trajectory(task, kind)
         except LynxsimError as exc:
             print(f"lynxsim: note: no {kind.value} path in the comparison: {exc}", file=sys.stderr)
-    dest = out / f"{task.name}_paths.png"
     plot_tool_paths(
         trajectories,
         dest,
         obstacles=task.scene.obstacles,
         title=f"{task.name}: tool paths of every trajectory type",
     )
-    return dest
 
 
 def _list() -> int:
@@ -122,23 +122,27 @@ def _traj(args: argparse.Namespace) -> int:
     from lynxsim.plots.trajectory import plot_joint_profiles
 
     task = _apply_overrides(load_task(args.task), args)
-    traj = build_trajectory(task, args.type)
-    t = traj.times_at_rate(args.rate_hz)
-    data = _samples(traj, t, args.si)
+    with about_task(args.task):
+        traj = build_trajectory(task, args.type)
+        t = traj.times_at_rate(args.rate_hz)
     out: Path = args.out_dir
-    stem = f"{task.name}_{traj.kind.value}"
-    samples = out / f"{stem}.{args.format}"
+    samples = output_path(out, task.name, traj.kind.value, suffix=f".{args.format}")
+    joints = output_path(out, task.name, traj.kind.value, "joints", suffix=".png")
+    paths = output_path(out, task.name, "paths", suffix=".png")
+    for dest in (samples, joints, *(() if args.no_compare else (paths,))):
+        check_destination(dest)
+    data = _samples(traj, t, args.si)
     if args.format == "csv":
         _write_csv(samples, data)
     else:
         _write_npz(samples, data, traj)
-    joints = out / f"{stem}_joints.png"
     plot_joint_profiles(
         traj, joints, title=f"{task.name}: {traj.kind.value} trajectory, {traj.duration:.3f} s"
     )
     written = [samples, joints]
     if not args.no_compare:
-        written.append(_comparison(task, out))
+        _comparison(task, paths)
+        written.append(paths)
     durations = ", ".join(f"{d:.3f}" for d in traj.segment_durations)
     print(
         f"{task.name}: {traj.kind.value} trajectory through {', '.join(traj.waypoints.names)}, "
@@ -175,16 +179,17 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     )
     p.add_argument(
         "--rate-hz",
-        type=positive_float,
+        type=bounded_float(MIN_RATE_HZ, MAX_RATE_HZ, "Hz"),
         default=500.0,
-        help="sampling rate of the written samples (default 500)",
+        help=f"sampling rate of the written samples, {MIN_RATE_HZ:g} to {MAX_RATE_HZ:g} "
+        "(default 500)",
     )
     p.add_argument("--format", choices=("csv", "npz"), default="csv", help="samples file format")
     p.add_argument("--si", action="store_true", help="samples in rad and m instead of deg and mm")
     timing = p.add_mutually_exclusive_group()
     timing.add_argument(
         "--segment-duration-s",
-        type=positive_float,
+        type=bounded_float(MIN_SEGMENT_S, MAX_SEGMENT_S, "s"),
         default=None,
         help="duration of every segment, overriding the task's",
     )

@@ -4,11 +4,24 @@ from __future__ import annotations
 
 import argparse
 import math
+from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["Units", "add_unit_flags", "finite_float", "json_list", "positive_float"]
+__all__ = [
+    "MAX_SEED",
+    "Units",
+    "add_unit_flags",
+    "bounded_float",
+    "bounded_int",
+    "finite_float",
+    "json_list",
+    "seed_int",
+]
+
+MAX_SEED = 2**63 - 1
+"""Largest seed accepted at the command line."""
 
 
 class Units:
@@ -63,12 +76,42 @@ def finite_float(text: str) -> float:
     return value
 
 
-def positive_float(text: str) -> float:
-    """Argparse type: a finite number > 0."""
-    value = finite_float(text)
-    if value <= 0.0:
-        raise argparse.ArgumentTypeError(f"must be a positive number, got {text!r}")
-    return value
+def bounded_float(low: float, high: float, unit: str = "") -> Callable[[str], float]:
+    """Argparse type: a finite number in ``[low, high]``; the error states the range."""
+    suffix = f" {unit}" if unit else ""
+
+    def parse(text: str) -> float:
+        value = finite_float(text)
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(
+                f"must be between {low:g} and {high:g}{suffix}, got {text}"
+            )
+        return value
+
+    parse.__name__ = "number"
+    return parse
+
+
+def bounded_int(low: int, high: int) -> Callable[[str], int]:
+    """Argparse type: an integer in ``[low, high]``; the error states the range."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text.replace("_", ""), 10) if len(text) <= 40 else None
+        except ValueError:
+            value = None
+        if value is None:
+            raise argparse.ArgumentTypeError(f"must be an integer, got {text[:40]!r}")
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must be between {low:,} and {high:,}, got {text}")
+        return value
+
+    parse.__name__ = "integer"
+    return parse
+
+
+seed_int = bounded_int(0, MAX_SEED)
+"""Argparse type: a random seed, 0 to 2**63 - 1."""
 
 
 def add_unit_flags(p: argparse.ArgumentParser) -> None:

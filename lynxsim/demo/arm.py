@@ -14,6 +14,7 @@ from pathlib import Path
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LynxsimError
+from lynxsim.fileio import file_stem
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
@@ -34,7 +35,7 @@ class DemoRun:
     @property
     def stem(self) -> str:
         """File name stem of its outputs."""
-        return f"{self.task.name}_{self.trajectory.kind.value}"
+        return file_stem(self.task.name, self.trajectory.kind.value)
 
 
 def arm_runs(tasks: list[Task], skipped: Callable[[str], None]) -> Iterator[DemoRun]:
@@ -86,7 +87,7 @@ def run_arm_demo(
     for name, (task, trajectories) in by_task.items():
         plot_tool_paths(
             trajectories,
-            plots / f"{name}_paths.png",
+            plots / f"{file_stem(name, 'paths')}.png",
             obstacles=task.scene.obstacles,
             title=f"{name}: tool paths of every type",
         )

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lynxsim.fileio import atomic_path
+from lynxsim.fileio import atomic_path, file_stem
 from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
 from lynxsim.rrr import mode_label
@@ -87,7 +87,7 @@ def run_rrr_demo(
     reports = []
     for i, task in enumerate(find_tasks(tasks, "rrr")):
         path = path_from_task(task)
-        stem = f"{task.name}_{path.label}"
+        stem = file_stem(task.name, path.label)
         poses = path.sample(np.linspace(0.0, path.duration, PATH_PLOT_SAMPLES)).pose
         plot_rrr_path(
             poses,

@@ -56,6 +56,15 @@ def _mark_waypoints(ax: Axes, traj: Trajectory, label: bool) -> None:
             )
 
 
+MAX_PLOT_POINTS = 20_000
+"""Most samples of one curve: more cannot be told apart in a figure, and take long to draw."""
+
+
+def _plot_rate(traj: Trajectory, rate_hz: float) -> float:
+    """``rate_hz`` [Hz], lowered so that a curve has at most :data:`MAX_PLOT_POINTS` samples."""
+    return min(rate_hz, MAX_PLOT_POINTS / max(traj.duration, 1e-9))
+
+
 def plot_joint_profiles(
     traj: Trajectory,
     dest: str | os.PathLike[str],
@@ -71,10 +80,11 @@ def plot_joint_profiles(
     Args:
         traj: The trajectory.
         dest: PNG path (written atomically).
-        rate_hz: Sampling rate of the curves [Hz]; the end point is always drawn.
+        rate_hz: Sampling rate of the curves [Hz], lowered for long trajectories to
+            :data:`MAX_PLOT_POINTS` samples; the end point is always drawn.
         title: Figure title; default names the type and the duration.
     """
-    t = np.append(traj.times_at_rate(rate_hz), traj.duration)
+    t = np.append(traj.times_at_rate(_plot_rate(traj, rate_hz)), traj.duration)
     states = traj.sample(t)
     fig = new_figure(11.0, 11.0)
     axes = fig.subplots(4, 1, sharex=True)
@@ -134,7 +144,7 @@ def plot_tool_paths(
         trajectories: Label to trajectory, all through the same waypoints.
         dest: PNG path (written atomically).
         obstacles: The obstacles to draw (default: the report's cylinder).
-        rate_hz: Sampling rate of the lines [Hz].
+        rate_hz: Sampling rate of the lines [Hz] (at most :data:`MAX_PLOT_POINTS` samples).
         title: Figure title.
     """
     fig = new_figure(13.0, 7.5)
@@ -144,7 +154,7 @@ def plot_tool_paths(
     first = next(iter(trajectories.values()))
     extent = [obstacle_extent_mm(obstacles)]
     for label, traj in trajectories.items():
-        t = np.append(traj.times_at_rate(rate_hz), traj.duration)
+        t = np.append(traj.times_at_rate(_plot_rate(traj, rate_hz)), traj.duration)
         path = tool_pose(traj.sample(t).q).position
         marks = tool_pose(traj.sample(traj.times_per_segment(REPORT_STEPS)).q).position * 1e3
         hit = " — tool crosses the obstacle" if inside_any(path, obstacles).any() else ""

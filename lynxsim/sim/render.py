@@ -15,6 +15,7 @@ import mujoco
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.bounds import MAX_FPS, MIN_FPS, check_range
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["Overlay", "Quality", "RenderSettings", "SceneRenderer"]
@@ -59,10 +60,12 @@ class RenderSettings:
     fps: float = 30.0
 
     def __post_init__(self) -> None:
-        if self.width <= 0 or self.height <= 0:
-            raise InvalidInputError(f"frame size must be positive, got {self.width}x{self.height}")
-        if not self.fps > 0:
-            raise InvalidInputError(f"fps must be positive, got {self.fps}")
+        for side in (self.width, self.height):
+            if isinstance(side, bool) or not isinstance(side, int) or side <= 0:
+                raise InvalidInputError(
+                    f"frame size must be positive integers, got {self.width!r}x{self.height!r}"
+                )
+        check_range(self.fps, "fps", MIN_FPS, MAX_FPS, "frames/s")
 
 
 @dataclass

@@ -54,7 +54,7 @@ def test_ik_json_lists_candidates(capsys):
         (["fk", "0", "0", "inf", "0", "0"], 2, "argument Q3: must be a finite number"),
         (["ik", "1", "2"], 2, "required: Z, PITCH"),
         (["ik", "1", "2", "x", "3"], 2, "invalid float value: 'x'"),
-        (["workspace", "--samples", "0"], 1, "must be positive"),
+        (["workspace", "--samples", "0"], 2, "must be between 1 and 10,000,000, got 0"),
     ],
     ids=["out-of-reach", "joint-range", "nan", "inf", "missing", "not-a-number", "no-samples"],
 )

@@ -34,8 +34,12 @@ def test_env_command_runs_a_random_policy_on_reach(capsys):
 
 
 def test_env_command_errors_are_one_line(capsys):
-    assert main(["env", "--episodes", "0", "--quiet"]) == 1
-    assert capsys.readouterr().err.strip() == "lynxsim: error: --episodes must be positive, got 0"
+    with pytest.raises(SystemExit) as info:
+        main(["env", "--episodes", "0", "--quiet"])
+    assert info.value.code == 2
+    assert capsys.readouterr().err.strip() == (
+        "lynxsim env: error: argument --episodes: must be between 1 and 1,000,000, got 0"
+    )
 
 
 def test_record_expert_episode_writes_an_mp4_and_returns_its_stats(tmp_path):

@@ -142,11 +142,11 @@ def test_negative_float_literals_are_values_not_options(argv, expected):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["traj", ARM_TASK, "--segment-duration-s", "-1e1"], "must be a positive number"),
-        (["traj", ARM_TASK, "--rate-hz", "-5E2"], "must be a positive number"),
-        (["play", ARM_TASK, "--fps", "-3e1"], "must be a positive number"),
-        (["rrr", "workspace", "--resolution-mm", "-2e0"], "must be a positive number"),
-        (["workspace", "--samples", "-1e3"], "invalid int value: '-1e3'"),
+        (["traj", ARM_TASK, "--segment-duration-s", "-1e1"], "must be between 0.001 and 3600 s"),
+        (["traj", ARM_TASK, "--rate-hz", "-5E2"], "must be between 1 and 10000 Hz, got -5E2"),
+        (["play", ARM_TASK, "--fps", "-3e1"], "must be between 1 and 240 frames/s"),
+        (["rrr", "workspace", "--resolution-mm", "-2e0"], "must be between 0.1 and 100 mm"),
+        (["workspace", "--samples", "-1e3"], "must be an integer, got '-1e3'"),
         (["rrr", "poses", "--mode", "-1e0"], "working mode must be an integer 0..7"),
     ],
     ids=["segment-duration", "rate", "fps", "resolution", "samples", "mode"],

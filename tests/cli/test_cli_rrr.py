@@ -94,7 +94,7 @@ def test_workspace_rejects_a_bad_resolution(run, tmp_path, capsys):
     with pytest.raises(SystemExit) as info:
         run("workspace", "--resolution-mm", "0", "--out", str(tmp_path / "x.png"))
     assert info.value.code == 2
-    assert "--resolution-mm: must be a positive number, got '0'" in capsys.readouterr().err
+    assert "--resolution-mm: must be between 0.1 and 100 mm, got 0" in capsys.readouterr().err
 
 
 def test_bad_mode_is_a_usage_error(run):

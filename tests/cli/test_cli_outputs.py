@@ -1,0 +1,180 @@
+"""Outputs are the user's, complete or absent; errors after loading name the task file.
+
+Outputs land inside the asked folder and never replace what is not a regular
+file; a full disk or SIGTERM leaves no partial file.
+"""
+
+from __future__ import annotations
+
+import os
+import resource
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from lynxsim.sim.video import decoded_frames
+
+SHORT_TASK = """
+name = "{name}"
+robot = "arm"
+[trajectory]
+type = "quintic"
+segment_duration_s = 1.0
+[[poses]]
+position_mm = [0.0, 300.0, 0.0]
+pitch_deg = -90.0
+[[poses]]
+position_mm = [100.0, 250.0, 50.0]
+pitch_deg = -90.0
+"""
+
+
+def _task(folder: Path, name: str = "short", body: str = SHORT_TASK) -> Path:
+    path = folder / "task.toml"
+    path.write_text(body.format(name=name))
+    return path
+
+
+@pytest.mark.parametrize("name", ["../escaped", "/tmp/lynxsim_abs", "a/../../b", ".hidden"])
+def test_task_names_never_choose_the_folder(cli, tmp_path, monkeypatch, name):
+    monkeypatch.chdir(tmp_path)
+    task = _task(tmp_path, name)
+    out = tmp_path / "work" / "out"
+    result = cli("traj", str(task), "--out-dir", str(out), "--no-compare")
+    assert result.code == 0, result.err
+    written = {p for p in (tmp_path / "work").rglob("*") if p.is_file()}
+    assert {p.parent for p in written} == {out}
+    assert {p.suffix for p in written} == {".csv", ".png"}
+    assert all(".." not in p.name and not p.name.startswith(".") for p in written)
+    assert not Path("/tmp/lynxsim_abs_quintic.csv").exists()
+    result = cli("play", str(task), "--no-video", "--quiet")
+    assert result.code == 0, result.err
+    written = {p for p in tmp_path.rglob("*") if p.is_file()} - written - {task}
+    assert len(written) == 1
+    (report,) = written
+    assert report.parent == tmp_path / "videos"
+    assert report.suffix == ".json"
+    assert ".." not in report.name
+
+
+def test_out_never_replaces_a_fifo_or_a_folder(cli, tmp_path):
+    task = _task(tmp_path)
+    fifo = tmp_path / "pipe.mp4"
+    os.mkfifo(fifo)
+    result = cli("play", str(task), "--out", str(fifo), "--quiet")
+    assert result.code == 1
+    assert result.err == f"lynxsim: error: will not replace {fifo}: it is not a regular file\n"
+    assert fifo.is_fifo()
+    folder = tmp_path / "clip.mp4"
+    folder.mkdir()
+    result = cli("play", str(task), "--out", str(folder), "--quiet")
+    assert result.code == 1
+    assert result.err == f"lynxsim: error: will not replace {folder}: it is a folder\n"
+    assert folder.is_dir()
+    assert not any(folder.iterdir())
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "pipe.mp4", "task.toml"]
+
+
+def test_out_must_be_an_mp4(cli, tmp_path):
+    result = cli("play", str(_task(tmp_path)), "--out", str(tmp_path / "x.avi"), "--quiet")
+    assert result.code == 1
+    assert result.err == f"lynxsim: error: --out must name an .mp4 file, got {tmp_path / 'x.avi'}\n"
+
+
+def _full_disk(limit_bytes: int):
+    def limit() -> None:
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # EFBIG instead of death, like ENOSPC
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
+
+    return limit
+
+
+def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "clip.mp4"
+    dest.write_bytes(b"the previous video")
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
+        capture_output=True,
+        text=True,
+        preexec_fn=_full_disk(20_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert proc.stderr.startswith("lynxsim: error: "), proc.stderr
+    assert "Traceback" not in proc.stderr
+    assert dest.read_bytes() == b"the previous video"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "task.toml"]
+
+
+def test_sigterm_removes_partial_outputs(tmp_path):
+    body = SHORT_TASK.replace("segment_duration_s = 1.0", "segment_duration_s = 60.0")
+    task = _task(tmp_path, body=body)
+    dest = tmp_path / "clip.mp4"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    deadline = time.monotonic() + 120
+    while not list(tmp_path.glob(".clip.*.tmp.mp4")):  # the encoder has started
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() < deadline
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 143
+    assert err == "lynxsim: terminated\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["task.toml"]
+
+
+def test_video_decodes_to_every_frame(cli, tmp_path):
+    dest = tmp_path / "clip.mp4"
+    result = cli("play", str(_task(tmp_path)), "--out", str(dest), "--fps", "20", "--quiet")
+    assert result.code == 0, result.err
+    motion_s, settle_s, fps = 1.0, 0.5, 20
+    assert decoded_frames(dest) == round((motion_s + settle_s) * fps) + 1  # both ends drawn
+
+
+def test_errors_after_loading_name_the_task_file(cli, tmp_path):
+    body = SHORT_TASK.replace("[100.0, 250.0, 50.0]", "[0.0, 450.0, 100.0]")
+    task = _task(tmp_path, body=body)
+    for argv in (
+        ["traj", str(task), "--out-dir", str(tmp_path)],
+        ["play", str(task), "--no-video"],
+    ):
+        result = cli(*argv)
+        assert result.code == 1
+        assert result.err.startswith(f"lynxsim: error: {task}: "), result.err
+        assert "out of the arm's reach" in result.err
+        assert result.err.count("\n") == 1
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["traj", "T", "--rate-hz", "1e12"], "--rate-hz: must be between 1 and 10000 Hz, got 1e12"),
+        (["workspace", "--samples", "999999999999"], "must be between 1 and 10,000,000"),
+        (["rrr", "workspace", "--resolution-mm", "1e-300"], "must be between 0.1 and 100 mm"),
+        (["play", "T", "--fps", "inf"], "--fps: must be a finite number, got 'inf'"),
+        (["traj", "T", "--segment-duration-s", "5e-324"], "must be between 0.001 and 3600 s"),
+        (["env", "--seed", "-1"], "--seed: must be between 0 and"),
+        (["env", "--episodes", "1" + "0" * 400], "--episodes: must be an integer"),
+    ],
+    ids=["rate", "samples", "resolution", "fps", "duration", "seed", "huge-int"],
+)
+def test_counts_rates_and_durations_are_bounded(cli, tmp_path, argv, message):
+    argv = [str(_task(tmp_path)) if a == "T" else a for a in argv]
+    result = cli(*argv)
+    assert result.code == 2
+    assert result.err.count("\n") == 1
+    assert message in result.err
+    assert result.out == ""
