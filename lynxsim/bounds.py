@@ -15,6 +15,7 @@ import math
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 
 __all__ = [
+    "MAX_ANGLE_RAD",
     "MAX_CELLS",
     "MAX_CONTROL_DT_S",
     "MAX_COORDINATE_M",
@@ -49,6 +50,8 @@ MAX_FPS = 240.0
 """Highest video frame rate [frames/s]."""
 MAX_COORDINATE_M = 10.0
 """Largest magnitude of a position coordinate [m]; the robots reach well under 1 m."""
+MAX_ANGLE_RAD = 4.0 * math.pi
+"""Largest magnitude of an angle given by a user [rad]: two turns (+-720 deg)."""
 MAX_EPISODES = 1_000_000
 """Most episodes of one command."""
 MAX_CONTROL_DT_S = 1.0

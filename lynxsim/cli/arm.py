@@ -15,14 +15,13 @@ import numpy as np
 from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
 from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.cli.units import Units, add_unit_flags, bounded_int, finite_float, json_list, seed_int
-from lynxsim.errors import InvalidInputError
 
 __all__ = ["register"]
 
 
 def _fk(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    q = np.array([u.angle_in(getattr(args, f"q{j}")) for j in range(1, 6)])
+    q = np.array([u.angle_in(getattr(args, f"q{j}"), f"Q{j}") for j in range(1, 6)])
     pose = tool_pose(q)
     origins = frame_origins(q)
     out: dict[str, Any] = {
@@ -53,9 +52,9 @@ def _fk(args: argparse.Namespace) -> int:
 def _ik(args: argparse.Namespace) -> int:
     u = Units(args.si)
     values = [args.x, args.y, args.z, args.pitch] + ([args.roll] if args.roll is not None else [])
-    p = np.array([u.length_in(v) for v in (args.x, args.y, args.z)])
-    roll = None if args.roll is None else u.angle_in(args.roll)
-    result = ik(p, u.angle_in(args.pitch), roll)
+    p = np.array([u.length_in(v, n) for v, n in ((args.x, "X"), (args.y, "Y"), (args.z, "Z"))])
+    roll = None if args.roll is None else u.angle_in(args.roll, "ROLL")
+    result = ik(p, u.angle_in(args.pitch, "PITCH"), roll)
     if not result.ok:
         target = ", ".join(f"{v:g}" for v in values)
         result.raise_for_status(
@@ -85,8 +84,6 @@ def _workspace(args: argparse.Namespace) -> int:
 
     from lynxsim.plots.arm_workspace import plot_arm_workspace
 
-    if args.samples <= 0:
-        raise InvalidInputError(f"--samples must be positive, got {args.samples}")
     rng = np.random.default_rng(args.seed)
     with tqdm(total=args.samples, unit="q", disable=args.quiet) as bar:
         samples = sample_workspace(

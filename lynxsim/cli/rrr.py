@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
+from lynxsim.bounds import MAX_ANGLE_RAD, check_range
 from lynxsim.cli.units import Units, add_unit_flags, bounded_float, finite_float, json_list
 from lynxsim.errors import InvalidInputError
 from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, format_figure20_table
@@ -37,7 +38,9 @@ DEFAULT_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
 
 def _ik(args: argparse.Namespace) -> int:
     u = Units(args.si)
-    pose = np.array([u.length_in(args.x), u.length_in(args.y), u.angle_in(args.alpha)])
+    pose = np.array(
+        [u.length_in(args.x, "X"), u.length_in(args.y, "Y"), u.angle_in(args.alpha, "ALPHA")]
+    )
     result = ik(pose)
     result.raise_for_status()
     meas = singularity_measures(pose, result.theta)
@@ -87,7 +90,7 @@ def _ik(args: argparse.Namespace) -> int:
 def _fk(args: argparse.Namespace) -> int:
     u = Units(args.si)
     typed = [args.theta1, args.theta2, args.theta3]
-    theta = np.array([u.angle_in(v) for v in typed])
+    theta = np.array([u.angle_in(v, f"THETA{i}") for i, v in enumerate(typed, 1)])
     sol = fk_all(theta)
     count = int(sol.num_solutions)
     poses = sol.pose[:count]
@@ -137,7 +140,10 @@ def _workspace(args: argparse.Namespace) -> int:
         raise InvalidInputError(
             f"--alpha-deg takes 1 to {MAX_ALPHAS} orientations, got {len(args.alpha_deg)}"
         )
-    alphas = [math.radians(a) for a in args.alpha_deg]
+    limit = math.degrees(MAX_ANGLE_RAD)
+    alphas = [
+        math.radians(check_range(a, "--alpha-deg", -limit, limit, "deg")) for a in args.alpha_deg
+    ]
     maps = workspace_maps(alphas, view_extent(alphas), args.resolution_mm * 1e-3)
     plot_rrr_workspace(maps, args.out, mode=args.mode)
     for wmap in maps:

@@ -9,6 +9,8 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.bounds import MAX_ANGLE_RAD, MAX_COORDINATE_M, check_range
+
 __all__ = [
     "MAX_SEED",
     "Units",
@@ -33,12 +35,24 @@ class Units:
         self.angle = "rad" if si else "deg"
         self._length_scale = 1.0 if si else 1e3
 
-    def length_in(self, v: float) -> float:
-        """A length typed by the user, in metres."""
+    def length_in(self, v: float, name: str = "a length") -> float:
+        """A length typed by the user, in metres.
+
+        Raises:
+            InvalidInputError: Beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`.
+        """
+        limit = MAX_COORDINATE_M * self._length_scale
+        check_range(v, name, -limit, limit, self.length)
         return v / self._length_scale
 
-    def angle_in(self, v: float) -> float:
-        """An angle typed by the user, in radians."""
+    def angle_in(self, v: float, name: str = "an angle") -> float:
+        """An angle typed by the user, in radians.
+
+        Raises:
+            InvalidInputError: Beyond :data:`~lynxsim.bounds.MAX_ANGLE_RAD` (two turns).
+        """
+        limit = MAX_ANGLE_RAD if self.si else math.degrees(MAX_ANGLE_RAD)
+        check_range(v, name, -limit, limit, self.angle)
         return v if self.si else math.radians(v)
 
     def length_out(self, v: npt.ArrayLike) -> npt.NDArray[np.float64]:

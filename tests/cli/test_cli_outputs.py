@@ -17,20 +17,7 @@ from pathlib import Path
 import pytest
 
 from lynxsim.sim.video import decoded_frames
-
-SHORT_TASK = """
-name = "{name}"
-robot = "arm"
-[trajectory]
-type = "quintic"
-segment_duration_s = 1.0
-[[poses]]
-position_mm = [0.0, 300.0, 0.0]
-pitch_deg = -90.0
-[[poses]]
-position_mm = [100.0, 250.0, 50.0]
-pitch_deg = -90.0
-"""
+from tests.fuzz.cli_cases import SHORT_ARM_TASK as SHORT_TASK
 
 
 def _task(folder: Path, name: str = "short", body: str = SHORT_TASK) -> Path:
@@ -177,4 +164,24 @@ def test_counts_rates_and_durations_are_bounded(cli, tmp_path, argv, message):
     assert result.code == 2
     assert result.err.count("\n") == 1
     assert message in result.err
+    assert result.out == ""
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["fk", "0", "1e12", "300", "1e308", "1e3"], "Q2 must be between -720 and 720 deg"),
+        (["ik", "0", "300", "1e300", "-90"], "Z must be between -10000 and 10000 mm"),
+        (["rrr", "ik", "1e9", "0", "0"], "X must be between -10000 and 10000 mm, got 1e+09 mm"),
+        (["rrr", "fk", "0", "0", "1e20", "--si"], "THETA3 must be between -12.5664 and 12.5664"),
+        (["rrr", "workspace", "--alpha-deg", "1e300"], "--alpha-deg must be between -720 and"),
+    ],
+    ids=["fk", "ik", "rrr-ik", "rrr-fk", "rrr-alpha"],
+)
+def test_absurd_coordinates_are_refused_before_any_work(cli, argv, message):
+    result = cli(*argv)
+    assert result.code == 1
+    assert result.err.startswith("lynxsim: error: ")
+    assert message in result.err
+    assert result.err.count("\n") == 1
     assert result.out == ""
