@@ -17,12 +17,12 @@ from pathlib import Path
 import pytest
 
 from lynxsim.sim.video import decoded_frames
-from tests.fuzz.cli_cases import SHORT_ARM_TASK as SHORT_TASK
+from tests.helpers import short_arm_task
 
 
-def _task(folder: Path, name: str = "short", body: str = SHORT_TASK) -> Path:
+def _task(folder: Path, name: str = "short", body: str | None = None) -> Path:
     path = folder / "task.toml"
-    path.write_text(body.format(name=name))
+    path.write_text(short_arm_task(name) if body is None else body)
     return path
 
 
@@ -101,7 +101,7 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
 
 
 def test_sigterm_removes_partial_outputs(tmp_path):
-    body = SHORT_TASK.replace("segment_duration_s = 1.0", "segment_duration_s = 60.0")
+    body = short_arm_task().replace("segment_duration_s = 1.0", "segment_duration_s = 60.0")
     task = _task(tmp_path, body=body)
     dest = tmp_path / "clip.mp4"
     proc = subprocess.Popen(
@@ -132,7 +132,7 @@ def test_video_decodes_to_every_frame(cli, tmp_path):
 
 
 def test_errors_after_loading_name_the_task_file(cli, tmp_path):
-    body = SHORT_TASK.replace("[100.0, 250.0, 50.0]", "[0.0, 450.0, 100.0]")
+    body = short_arm_task().replace("[100.0, 250.0, 50.0]", "[0.0, 450.0, 100.0]")
     task = _task(tmp_path, body=body)
     for argv in (
         ["traj", str(task), "--out-dir", str(tmp_path)],

@@ -11,6 +11,8 @@ import imageio.v2 as imageio
 import pytest
 
 from lynxsim.cli import main
+from tests.helpers import short_rrr_task
+from tests.rrr_sim.test_rrr_playback import RRR_METRIC_NAMES
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -99,3 +101,25 @@ def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
     assert "e (300 mm, 250 mm, -40 deg): simulation says UNREACHABLE" in printed
     assert "scripted expert, seed 0: success True" in printed
     assert imageio.get_reader(out / "LynxPickAndPlace-v0_expert.mp4").count_frames() > 50
+
+
+def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys):
+    task = tmp_path / "short_rrr.toml"
+    task.write_text(short_rrr_task())
+    assert main(["play", str(task), "--no-video", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["trajectory"] == "quintic"
+    assert set(report["metrics"]) == set(RRR_METRIC_NAMES)
+    assert report["metrics"]["working_mode"] == 7
+    assert main(["play", str(task), "--no-video", "--quiet", "--mode", "0"]) == 0
+    out = capsys.readouterr().out
+    assert "loop closure: max " in out
+    assert "working mode: 0" in out
+    assert "platform orientation error: max " in out
+
+
+def test_cli_play_refuses_types_the_rrr_does_not_plan(tmp_path, capsys):
+    task = tmp_path / "short_rrr.toml"
+    task.write_text(short_rrr_task())
+    assert main(["play", str(task), "--no-video", "--type", "ruckig"]) == 1
+    assert "'ruckig' is not planned for the 3-RRR robot" in capsys.readouterr().err

@@ -22,38 +22,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from lynxsim.cli import main
+from tests.helpers import short_arm_task, short_rrr_task
 
 __all__ = ["CliOutcome", "argument_sets", "check_run", "make_sandbox", "random_argv"]
-
-SHORT_ARM_TASK = """
-name = "{name}"
-robot = "arm"
-[trajectory]
-type = "quintic"
-segment_duration_s = 1.0
-[[poses]]
-position_mm = [0.0, 300.0, 0.0]
-pitch_deg = -90.0
-[[poses]]
-position_mm = [100.0, 250.0, 50.0]
-pitch_deg = -90.0
-"""
-
-SHORT_RRR_TASK = """
-name = "{name}"
-robot = "rrr"
-[trajectory]
-type = "quintic"
-segment_duration_s = 0.3
-[[poses]]
-x_mm = 0.0
-y_mm = 0.0
-alpha_deg = 0.0
-[[poses]]
-x_mm = 20.0
-y_mm = 10.0
-alpha_deg = 5.0
-"""
 
 NUMBERS = [
     "0", "1", "-1", "90", "-90", "300", "-9e1", "-.5", "1e3", "1e12", "-1e12", "1e308",
@@ -110,9 +81,9 @@ def make_sandbox(root: Path) -> dict[str, Path]:
         "fifo": root / "pipe.mp4",
         "garbage": root / "garbage.toml",
     }
-    paths["arm_task"].write_text(SHORT_ARM_TASK.format(name="short"))
-    paths["evil_task"].write_text(SHORT_ARM_TASK.format(name="../../escaped"))
-    paths["rrr_task"].write_text(SHORT_RRR_TASK.format(name="short_rrr"))
+    paths["arm_task"].write_text(short_arm_task())
+    paths["evil_task"].write_text(short_arm_task("../../escaped"))
+    paths["rrr_task"].write_text(short_rrr_task())
     paths["folder"].mkdir(exist_ok=True)
     if not paths["fifo"].exists():
         os.mkfifo(paths["fifo"])

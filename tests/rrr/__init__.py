@@ -1,1 +1,1 @@
-"""Tests of the 3-RRR kinematics (lynxsim.rrr), its figures and its CLI."""
+"""Tests of the 3-RRR kinematics (lynxsim.rrr) and its figures (its CLI: tests/cli)."""

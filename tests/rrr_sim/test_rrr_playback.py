@@ -11,7 +11,6 @@ import imageio.v2 as imageio
 import numpy as np
 import pytest
 
-from lynxsim.cli import main
 from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import platform_path
@@ -21,6 +20,7 @@ from lynxsim.sim.rrr.model import HOME_POSE, load_rrr_scene
 from lynxsim.sim.rrr.playback import RRRMetrics, play_rrr
 from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.tasks import load_task
+from tests.helpers import short_rrr_task
 from tests.rrr_sim.conftest import FIGURE20_A, FIGURE20_F
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -57,24 +57,7 @@ RRR_METRIC_NAMES = (
 """The 3-RRR figures of a run report, in order (:class:`RRRMetrics`)."""
 SMALL_RENDER = RenderSettings(width=160, height=128, camera="top", quality=Quality.FAST, fps=20)
 
-SHORT_RRR_TASK = """
-name = "short_rrr"
-robot = "rrr"
-[trajectory]
-type = "quintic"
-segment_duration_s = 0.6
-stretch = true
-[[poses]]
-name = "home"
-x_mm = 251.147
-y_mm = 145.0
-alpha_deg = 0.0
-[[poses]]
-name = "a"
-x_mm = 220.0
-y_mm = 150.0
-alpha_deg = 10.0
-"""
+SHORT_RRR_TASK = short_rrr_task()
 
 
 @pytest.fixture(scope="module", params=TASKS.values(), ids=TASKS.keys())
@@ -136,28 +119,6 @@ def test_video_is_recorded_at_the_video_rate_of_simulated_time(tmp_path):
     frames = imageio.mimread(video)
     assert len(frames) == pytest.approx((0.6 + 0.1) * SMALL_RENDER.fps, abs=2)
     assert frames[-1].shape == (128, 160, 3)
-
-
-def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys):
-    task = tmp_path / "short_rrr.toml"
-    task.write_text(SHORT_RRR_TASK)
-    assert main(["play", str(task), "--no-video", "--json"]) == 0
-    report = json.loads(capsys.readouterr().out)
-    assert report["trajectory"] == "quintic"
-    assert set(report["metrics"]) == set(RRR_METRIC_NAMES)
-    assert report["metrics"]["working_mode"] == 7
-    assert main(["play", str(task), "--no-video", "--quiet", "--mode", "0"]) == 0
-    out = capsys.readouterr().out
-    assert "loop closure: max " in out
-    assert "working mode: 0" in out
-    assert "platform orientation error: max " in out
-
-
-def test_cli_play_refuses_types_the_rrr_does_not_plan(tmp_path, capsys):
-    task = tmp_path / "short_rrr.toml"
-    task.write_text(SHORT_RRR_TASK)
-    assert main(["play", str(task), "--no-video", "--type", "ruckig"]) == 1
-    assert "'ruckig' is not planned for the 3-RRR robot" in capsys.readouterr().err
 
 
 def test_demo_writes_videos_reports_plots_and_figure20_verdicts(tmp_path):

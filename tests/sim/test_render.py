@@ -87,7 +87,10 @@ def test_failed_video_leaves_no_file(tmp_path):
 
 @pytest.mark.parametrize(
     ("dest", "fps", "message"),
-    [("a.avi", 30.0, "must end in .mp4"), ("a.mp4", 0.0, "fps must be between 1 and 240 frames/s, got 0")],
+    [
+        ("a.avi", 30.0, "must end in .mp4"),
+        ("a.mp4", 0.0, "fps must be between 1 and 240 frames/s, got 0"),
+    ],
     ids=["suffix", "fps"],
 )
 def test_video_writer_validates_arguments(tmp_path, dest, fps, message):
