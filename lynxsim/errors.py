@@ -144,7 +144,8 @@ class TaskFileError(LynxsimError, ValueError):
     """
 
     def __init__(self, path: str, field: str | None, problem: str) -> None:
-        where = f"{path}: {field}" if field else path
+        shown = path if path.isprintable() else repr(path)  # one line, whatever the name
+        where = f"{shown}: {field}" if field else shown
         super().__init__(f"{where}: {problem}")
         self.path = path
         self.field = field

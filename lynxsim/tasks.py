@@ -60,12 +60,26 @@ base plane (-12.5 mm <= z <= 0) stands on the table: its bottom moves down to
 the table top, its top stays at z + height (the report's cylinder above spans
 -12.5 to 400 mm and equals :data:`~lynxsim.scene.REPORT_CYLINDER`). A bottom
 face higher than 0 is kept (a raised obstacle); one lower than the table top,
-a sphere or cube reaching below it, is refused. Sanity bounds: coordinates
-within +-10000 mm (10 m), sizes (radius, height, edge) 0.1 to 10000 mm, the
-cube's mass at most 100 kg and its friction at most 10. An obstacle may not
-enclose the robot's base (the origin) or the cube's start (its centre). Arm
-tasks without ``[cube]`` get the report's cube; 3-RRR tasks have neither
-obstacles nor cube (both keys are refused).
+a sphere or cube reaching below it, is refused. An obstacle may not enclose
+the robot's base (the origin) or the cube's start (its centre). Arm tasks
+without ``[cube]`` get the report's cube; 3-RRR tasks have neither obstacles
+nor cube (both keys are refused).
+
+Sanity bounds. Most come from :mod:`lynxsim.bounds`, the one place they are
+set: every coordinate (pose ``position_mm``, ``x_mm``, ``y_mm``, obstacle and
+cube positions) within +-``MAX_COORDINATE_M`` (10 m, 10000 mm), every segment
+duration within ``MIN_SEGMENT_S`` .. ``MAX_SEGMENT_S`` (1 ms to 1 h), every angle
+(``pitch_deg``, ``roll_deg``, ``q_deg``, ``alpha_deg``, ``yaw_deg``) within
++-``MAX_ANGLE_RAD`` (two turns, +-720 deg; larger ones only make the arithmetic
+lose precision). Local to task files: scene sizes (radius, height, edge) 0.1 mm
+up to the coordinate bound, the cube's mass at most 100 kg and its friction at most 10.
+
+Text. Names (the task's ``name``, pose and obstacle names) are 1 to 100
+characters; the ``description`` at most 1000. Both are printable text, one
+line: letters, digits, marks, punctuation, symbols and the space of any script;
+no control character (NUL, tab, newline, escape sequences), no other
+whitespace or invisible format character (``str.isprintable``). A task without
+``name`` takes the file's stem, which must pass the same check.
 
 Every problem is reported as a :class:`~lynxsim.errors.TaskFileError` naming
 the file and the field (``poses[2].pitch_deg``, ``obstacles[1].radius_mm``,
@@ -77,12 +91,14 @@ from __future__ import annotations
 import dataclasses
 import math
 import os
+import reprlib
 import tomllib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from lynxsim.bounds import MAX_ANGLE_RAD, MAX_COORDINATE_M, MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, TaskFileError
 from lynxsim.robots import ROBOTS, PoseSchema
 from lynxsim.scene import REPORT_CUBE, TABLE, Box, Cube, Cylinder, Obstacle, Scene, Sphere
@@ -158,14 +174,32 @@ _SHAPE_KEYS: dict[str, tuple[str, ...]] = {
 _OBSTACLE_KEYS = tuple(dict.fromkeys(k for keys in _SHAPE_KEYS.values() for k in keys))
 _CUBE_KEYS = ("position_mm", "size_mm", "yaw_deg", "mass_kg", "friction")
 
-_LIMIT_MM = 10_000.0
-"""Bound on every scene coordinate and size [mm] (10 m)."""
+_LIMIT_MM = MAX_COORDINATE_M * 1e3
+"""Bound on every coordinate and scene size [mm]: :data:`lynxsim.bounds.MAX_COORDINATE_M`."""
+_MAX_ANGLE_DEG = math.degrees(MAX_ANGLE_RAD)
+"""Bound on every angle [deg]: :data:`lynxsim.bounds.MAX_ANGLE_RAD`, two turns either way."""
+_MAX_NAME_CHARS = 100
+"""Longest name (task, pose, obstacle) [characters]."""
+_MAX_DESCRIPTION_CHARS = 1000
+"""Longest description [characters]."""
 _MIN_SIZE_MM = 0.1
 """Smallest scene size (radius, height, edge) [mm]."""
 _MAX_CUBE_MASS_KG = 100.0
 """Heaviest cube a task may ask for [kg]."""
 _MAX_FRICTION = 10.0
 """Largest sliding friction coefficient of the cube [-]."""
+
+
+_SHOW = reprlib.Repr()
+_SHOW.maxstring = 60
+_SHOW.maxother = 60
+_SHOW.maxlong = 40
+_SHOW.maxlevel = 3
+
+
+def _show(value: object) -> str:
+    """``value`` for a message: its repr, shortened (long strings, lists, integers, nesting)."""
+    return _SHOW.repr(value)
 
 
 class _Reader:
@@ -183,71 +217,108 @@ class _Reader:
         unknown = sorted(set(value) - set(keys))
         if unknown:
             prefix = f"{field}." if field else ""
-            raise self.fail(
-                f"{prefix}{unknown[0]}", f"unknown key; expected one of: {', '.join(keys)}"
-            )
+            key = unknown[0] if _is_text(unknown[0], _MAX_NAME_CHARS) else _show(unknown[0])
+            raise self.fail(f"{prefix}{key}", f"unknown key; expected one of: {', '.join(keys)}")
         return value
 
     def number(self, value: object, field: str) -> float:
         if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.fail(field, f"must be a number, got {value!r}")
+            raise self.fail(field, f"must be a number, got {_show(value)}")
         try:
             number = float(value)
         except OverflowError:  # an integer beyond the float range
             raise self.fail(field, "must be finite, got an integer beyond 1e308") from None
         if not math.isfinite(number):
-            raise self.fail(field, f"must be finite, got {value!r}")
+            raise self.fail(field, f"must be finite, got {_show(value)}")
         return number
 
     def positive(self, value: object, field: str) -> float:
         number = self.number(value, field)
         if number <= 0.0:
-            raise self.fail(field, f"must be positive, got {value!r}")
+            raise self.fail(field, f"must be positive, got {_show(value)}")
         return number
-
-    def vector(self, value: object, n: int, field: str) -> tuple[float, ...]:
-        if not isinstance(value, list) or len(value) != n:
-            raise self.fail(field, f"must be a list of {n} numbers, got {value!r}")
-        return tuple(self.number(v, f"{field}[{i}]") for i, v in enumerate(value))
 
     def bounded(self, value: object, field: str, low: float, high: float, unit: str) -> float:
         """A number in [low, high], ``unit`` naming its unit in the message."""
         number = self.number(value, field)
         if not low <= number <= high:
-            raise self.fail(field, f"must lie within {low:g}..{high:g} {unit}, got {value!r}")
+            raise self.fail(field, f"must lie within {low:g}..{high:g} {unit}, got {_show(value)}")
         return number
+
+    def angle_deg(self, value: object, field: str) -> float:
+        """An angle [deg] within +-720 deg, as radians."""
+        bound = _MAX_ANGLE_DEG
+        return math.radians(self.bounded(value, field, -bound, bound, "deg (two turns)"))
+
+    def duration_s(self, value: object, field: str) -> float:
+        """A segment duration [s] within the bounds of :mod:`lynxsim.bounds`."""
+        self.positive(value, field)
+        return self.bounded(value, field, MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
 
     def size_mm(self, value: object, field: str, high: float = _LIMIT_MM) -> float:
         """A positive size [mm], at least 0.1 mm and at most ``high``."""
         number = self.positive(value, field)
         if not _MIN_SIZE_MM <= number <= high:
-            raise self.fail(field, f"must lie within {_MIN_SIZE_MM:g}..{high:g} mm, got {value!r}")
+            raise self.fail(
+                field, f"must lie within {_MIN_SIZE_MM:g}..{high:g} mm, got {_show(value)}"
+            )
         return number
+
+    def coordinate_mm(self, value: object, field: str) -> float:
+        """A coordinate [mm] within +-10000 mm (:data:`lynxsim.bounds.MAX_COORDINATE_M`)."""
+        unit = f"mm (+-{MAX_COORDINATE_M:g} m)"
+        return self.bounded(value, field, -_LIMIT_MM, _LIMIT_MM, unit)
 
     def position_mm(self, value: object, field: str) -> tuple[float, float, float]:
         """A point (x, y, z) [mm], each coordinate within +-10000 mm (10 m)."""
         if not isinstance(value, list) or len(value) != 3:
-            raise self.fail(field, f"must be a list of 3 numbers, got {value!r}")
-        x, y, z = (
-            self.bounded(v, f"{field}[{i}]", -_LIMIT_MM, _LIMIT_MM, "mm (+-10 m)")
-            for i, v in enumerate(value)
-        )
+            raise self.fail(field, f"must be a list of 3 numbers, got {_show(value)}")
+        x, y, z = (self.coordinate_mm(v, f"{field}[{i}]") for i, v in enumerate(value))
         return x, y, z
 
     def string(self, value: object, field: str) -> str:
         if not isinstance(value, str):
-            raise self.fail(field, f"must be a string, got {value!r}")
+            raise self.fail(field, f"must be a string, got {_show(value)}")
         return value
+
+    def text(self, value: object, field: str, max_chars: int, *, empty: bool) -> str:
+        """Printable one-line text of at most ``max_chars`` characters (empty if ``empty``)."""
+        text = self.string(value, field)
+        what = "printable text" if empty else "a non-empty printable string"
+        if not empty and not text.strip():
+            raise self.fail(field, f"must be {what}, got {_show(text)}")
+        bad = next((i for i, c in enumerate(text) if not c.isprintable()), None)
+        if bad is not None:
+            raise self.fail(
+                field,
+                f"must be {what}, got {_show(text)} "
+                f"(character U+{ord(text[bad]):04X} at index {bad} is a control, "
+                "format or whitespace character)",
+            )
+        if len(text) > max_chars:
+            raise self.fail(
+                field, f"must be at most {max_chars} characters, got {len(text)}: {_show(text)}"
+            )
+        return text
+
+    def name(self, value: object, field: str) -> str:
+        """A name: 1 to 100 printable characters."""
+        return self.text(value, field, _MAX_NAME_CHARS, empty=False)
 
     def boolean(self, value: object, field: str) -> bool:
         if not isinstance(value, bool):
-            raise self.fail(field, f"must be true or false, got {value!r}")
+            raise self.fail(field, f"must be true or false, got {_show(value)}")
         return value
 
     def required(self, table: Mapping[str, Any], key: str, field: str) -> Any:
         if key not in table:
             raise self.fail(field, "missing")
         return table[key]
+
+
+def _is_text(value: str, max_chars: int) -> bool:
+    """Whether ``value`` is printable, one line and at most ``max_chars`` long."""
+    return len(value) <= max_chars and value.isprintable()
 
 
 def _tool_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> ArmPose | JointPose:
@@ -257,25 +328,29 @@ def _tool_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> Arm
             raise r.fail(
                 f"{field}.{extra[0]}", "a pose gives either q_deg or a tool pose, not both"
             )
-        q = r.vector(raw["q_deg"], 5, f"{field}.q_deg")
-        return JointPose(tuple(math.radians(v) for v in q), name)
-    position = r.vector(
-        r.required(raw, "position_mm", f"{field}.position_mm"), 3, f"{field}.position_mm"
+        raw_q = raw["q_deg"]
+        if not isinstance(raw_q, list) or len(raw_q) != 5:
+            raise r.fail(f"{field}.q_deg", f"must be a list of 5 numbers, got {_show(raw_q)}")
+        q = tuple(r.angle_deg(v, f"{field}.q_deg[{i}]") for i, v in enumerate(raw_q))
+        return JointPose(q, name)
+    position = r.position_mm(
+        r.required(raw, "position_mm", f"{field}.position_mm"), f"{field}.position_mm"
     )
-    pitch = r.number(r.required(raw, "pitch_deg", f"{field}.pitch_deg"), f"{field}.pitch_deg")
+    pitch = r.angle_deg(r.required(raw, "pitch_deg", f"{field}.pitch_deg"), f"{field}.pitch_deg")
     roll = None
     if "roll_deg" in raw:
-        roll = math.radians(r.number(raw["roll_deg"], f"{field}.roll_deg"))
+        roll = r.angle_deg(raw["roll_deg"], f"{field}.roll_deg")
     x, y, z = (v * _MM for v in position)
-    return ArmPose((x, y, z), math.radians(pitch), roll, name)
+    return ArmPose((x, y, z), pitch, roll, name)
 
 
 def _platform_pose(r: _Reader, raw: Mapping[str, Any], field: str, name: str) -> PlanarPose:
-    x, y, alpha = (
-        r.number(r.required(raw, key, f"{field}.{key}"), f"{field}.{key}")
-        for key in ("x_mm", "y_mm", "alpha_deg")
+    x, y = (
+        r.coordinate_mm(r.required(raw, key, f"{field}.{key}"), f"{field}.{key}")
+        for key in ("x_mm", "y_mm")
     )
-    return PlanarPose(x * _MM, y * _MM, math.radians(alpha), name)
+    alpha = r.angle_deg(r.required(raw, "alpha_deg", f"{field}.alpha_deg"), f"{field}.alpha_deg")
+    return PlanarPose(x * _MM, y * _MM, alpha, name)
 
 
 _PoseReader = Callable[["_Reader", Mapping[str, Any], str, str], TaskPose]
@@ -318,7 +393,8 @@ def _obstacle(r: _Reader, item: object, field: str) -> Obstacle:
     shape = r.string(r.required(raw, "shape", f"{field}.shape"), f"{field}.shape")
     if shape not in _SHAPE_KEYS:
         raise r.fail(
-            f"{field}.shape", f"unknown shape {shape!r}; expected one of: {', '.join(_SHAPE_KEYS)}"
+            f"{field}.shape",
+            f"unknown shape {_show(shape)}; expected one of: {', '.join(_SHAPE_KEYS)}",
         )
     keys = _SHAPE_KEYS[shape]
     foreign = [k for k in raw if k not in keys]
@@ -326,9 +402,7 @@ def _obstacle(r: _Reader, item: object, field: str) -> Obstacle:
         raise r.fail(
             f"{field}.{foreign[0]}", f"not a key of a {shape}; a {shape} takes: {', '.join(keys)}"
         )
-    name = r.string(r.required(raw, "name", f"{field}.name"), f"{field}.name")
-    if not name or not name.isprintable():
-        raise r.fail(f"{field}.name", f"must be a non-empty printable string, got {name!r}")
+    name = r.name(r.required(raw, "name", f"{field}.name"), f"{field}.name")
     position_mm = r.position_mm(
         r.required(raw, "position_mm", f"{field}.position_mm"), f"{field}.position_mm"
     )
@@ -344,11 +418,13 @@ def _obstacle(r: _Reader, item: object, field: str) -> Obstacle:
         if shape == "box":
             raw_size = r.required(raw, "size_mm", f"{field}.size_mm")
             if not isinstance(raw_size, list) or len(raw_size) != 3:
-                raise r.fail(f"{field}.size_mm", f"must be a list of 3 numbers, got {raw_size!r}")
+                raise r.fail(
+                    f"{field}.size_mm", f"must be a list of 3 numbers, got {_show(raw_size)}"
+                )
             sx, sy, sz = (r.size_mm(v, f"{field}.size_mm[{i}]") for i, v in enumerate(raw_size))
-            yaw = r.number(raw.get("yaw_deg", 0.0), f"{field}.yaw_deg")
+            yaw = r.angle_deg(raw.get("yaw_deg", 0.0), f"{field}.yaw_deg")
             position, height = _standing(r, field, position_mm, sz)
-            return Box(name, position, (_m(sx), _m(sy), height), math.radians(yaw))
+            return Box(name, position, (_m(sx), _m(sy), height), yaw)
         radius = size("radius_mm")
         x, y, z = (_m(v) for v in position_mm)
         if z - _m(radius) < TABLE.top_z:
@@ -374,7 +450,7 @@ def _cube(r: _Reader, item: object) -> Cube:
         size = _m(r.size_mm(raw["size_mm"], "cube.size_mm"))
     yaw = REPORT_CUBE.yaw
     if "yaw_deg" in raw:
-        yaw = math.radians(r.number(raw["yaw_deg"], "cube.yaw_deg"))
+        yaw = r.angle_deg(raw["yaw_deg"], "cube.yaw_deg")
     mass = r.positive(raw.get("mass_kg", REPORT_CUBE.mass), "cube.mass_kg")
     if mass > _MAX_CUBE_MASS_KG:
         raise r.fail("cube.mass_kg", f"must be at most {_MAX_CUBE_MASS_KG:g} kg, got {mass!r}")
@@ -404,7 +480,7 @@ def _scene(r: _Reader, top: Mapping[str, Any]) -> Scene:
         field = f"obstacles[{i}]"
         obstacle = _obstacle(r, item, field)
         if any(o.name == obstacle.name for o in obstacles):
-            raise r.fail(f"{field}.name", f"duplicate obstacle name {obstacle.name!r}")
+            raise r.fail(f"{field}.name", f"duplicate obstacle name {_show(obstacle.name)}")
         try:  # does it enclose the base or the cube's start?
             Scene((obstacle,), TABLE, cube)
         except InvalidInputError as exc:
@@ -422,16 +498,28 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     robot = r.string(r.required(top, "robot", "robot"), "robot")
     entry = ROBOTS.get(robot)
     if entry is None:
-        raise r.fail("robot", f"unknown robot {robot!r}; expected one of: {', '.join(ROBOTS)}")
-    name = r.string(top.get("name", default_name), "name")
-    description = r.string(top.get("description", ""), "description")
+        raise r.fail("robot", f"unknown robot {_show(robot)}; expected one of: {', '.join(ROBOTS)}")
+    if "name" in top:
+        name = r.name(top["name"], "name")
+    elif _is_text(default_name, _MAX_NAME_CHARS) and default_name.strip():
+        name = default_name
+    else:
+        raise r.fail(
+            "name",
+            f"missing, and the file's stem {_show(default_name)} is no name (1 to "
+            f'{_MAX_NAME_CHARS} printable characters); give one with name = "..."',
+        )
+    description = r.text(
+        top.get("description", ""), "description", _MAX_DESCRIPTION_CHARS, empty=True
+    )
 
     traj = r.table(r.required(top, "trajectory", "trajectory"), "trajectory", _TRAJECTORY_KEYS)
     kind_name = r.string(r.required(traj, "type", "trajectory.type"), "trajectory.type")
     kinds = [k.value for k in TrajectoryKind]
     if kind_name not in kinds:
         raise r.fail(
-            "trajectory.type", f"unknown type {kind_name!r}; expected one of: {', '.join(kinds)}"
+            "trajectory.type",
+            f"unknown type {_show(kind_name)}; expected one of: {', '.join(kinds)}",
         )
     stretch = r.boolean(traj.get("stretch", False), "trajectory.stretch")
     pass_through = r.boolean(traj.get("pass_through", False), "trajectory.pass_through")
@@ -444,9 +532,9 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     for i, item in enumerate(raw_poses):
         field = f"poses[{i}]"
         raw = r.table(item, field, pose_keys)
-        pose_name = r.string(raw.get("name", f"P{i + 1}"), f"{field}.name")
+        pose_name = r.name(raw.get("name", f"P{i + 1}"), f"{field}.name")
         if any(p.name == pose_name for p in poses):
-            raise r.fail(f"{field}.name", f"duplicate pose name {pose_name!r}")
+            raise r.fail(f"{field}.name", f"duplicate pose name {_show(pose_name)}")
         poses.append(read_pose(r, raw, field, pose_name))
 
     durations: tuple[float, ...] | None = None
@@ -457,9 +545,9 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         if isinstance(raw_d, list):
             if len(raw_d) != n:
                 raise r.fail(field, f"needs {n} durations (one per segment), got {len(raw_d)}")
-            durations = tuple(r.positive(v, f"{field}[{i}]") for i, v in enumerate(raw_d))
+            durations = tuple(r.duration_s(v, f"{field}[{i}]") for i, v in enumerate(raw_d))
         else:
-            durations = (r.positive(raw_d, field),) * n
+            durations = (r.duration_s(raw_d, field),) * n
 
     if entry.scene:
         scene = _scene(r, top)

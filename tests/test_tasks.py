@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -14,7 +15,9 @@ from hypothesis import strategies as st
 
 from lynxsim.arm.fk import FRAME_NAMES, frame_origins
 from lynxsim.arm.task import build_trajectory
-from lynxsim.errors import TaskFileError
+from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
+from lynxsim.errors import InvalidInputError, LynxsimError, TaskFileError
+from lynxsim.robots import motion_builder
 from lynxsim.scene import (
     REPORT_CUBE,
     REPORT_CYLINDER,
@@ -72,10 +75,38 @@ alpha_deg = -40.0
 """
 
 
-def _write(tmp_path: Path, text: str) -> Path:
-    path = tmp_path / "task.toml"
-    path.write_text(text)
-    return path
+@pytest.fixture
+def task_file(tmp_path: Path) -> Callable[[str], Path]:
+    """Writes a task text to ``task.toml`` in the test's folder; returns its path."""
+
+    def write(text: str) -> Path:
+        path = tmp_path / "task.toml"
+        path.write_text(text, encoding="utf-8")
+        return path
+
+    return write
+
+
+@pytest.fixture
+def load_text(task_file: Callable[[str], Path]) -> Callable[[str], Task]:
+    """Loads a task text through a file (``task.toml``)."""
+    return lambda text: load_task(task_file(text))
+
+
+def _refused(path: Path, field: str | None, problem: str) -> TaskFileError:
+    """The error loading ``path`` raises: one line naming the file and ``field``, with ``problem``.
+
+    ``field`` None: the file as a whole.
+    """
+    with pytest.raises(TaskFileError) as info:
+        load_task(path)
+    message = str(info.value)
+    assert message.isprintable()
+    shown = str(path) if str(path).isprintable() else repr(str(path))
+    assert message.startswith(f"{shown}: {field}: " if field else f"{shown}: ")
+    assert problem in message
+    assert (info.value.path, info.value.field) == (str(path), field)
+    return info.value
 
 
 def test_pick_and_place_file_is_the_reports_table_4():
@@ -113,8 +144,8 @@ def test_obstacle_avoidance_file_has_the_reports_via_points():
     ]
 
 
-def test_arm_poses_may_be_joints_and_defaults_apply(tmp_path):
-    task = load_task(_write(tmp_path, ARM_TASK))
+def test_arm_poses_may_be_joints_and_defaults_apply(load_text):
+    task = load_text(ARM_TASK)
     assert task.name == "task"
     assert task.durations is None
     assert not task.stretch
@@ -127,8 +158,8 @@ def test_arm_poses_may_be_joints_and_defaults_apply(tmp_path):
     assert home.q == pytest.approx((0.0, math.pi / 2, -math.pi / 2, 0.0, math.pi))
 
 
-def test_rrr_tasks_load_platform_poses_in_si(tmp_path):
-    task = load_task(_write(tmp_path, RRR_TASK))
+def test_rrr_tasks_load_platform_poses_in_si(load_text):
+    task = load_text(RRR_TASK)
     assert task.robot == "rrr"
     assert task.durations == (1.0, 2.0)
     assert task.poses[2] == PlanarPose(0.3, 0.25, math.radians(-40.0), "far")
@@ -198,39 +229,29 @@ def test_rrr_tasks_load_platform_poses_in_si(tmp_path):
     ],
     ids=lambda v: v if isinstance(v, str) and "." in v and " " not in v else None,
 )
-def test_malformed_field_is_named_in_one_line(tmp_path, old, new, field, problem):
+def test_malformed_field_is_named_in_one_line(task_file, old, new, field, problem):
     assert old in ARM_TASK
-    path = _write(tmp_path, ARM_TASK.replace(old, new, 1))
-    with pytest.raises(TaskFileError) as info:
-        load_task(path)
-    message = str(info.value)
-    assert "\n" not in message
-    assert message.startswith(f"{path}: {field}: ")
-    assert problem in message
-    assert (info.value.path, info.value.field) == (str(path), field)
+    _refused(task_file(ARM_TASK.replace(old, new, 1)), field, problem)
 
 
-def test_one_pose_is_not_a_task(tmp_path):
+def test_one_pose_is_not_a_task(task_file):
     text = ARM_TASK[: ARM_TASK.index("[[poses]]\nname")]
-    with pytest.raises(TaskFileError, match=r"poses: must be an array of at least two"):
-        load_task(_write(tmp_path, text))
+    _refused(task_file(text), "poses", "must be an array of at least two")
 
 
-def test_rrr_poses_need_their_platform_keys(tmp_path):
-    text = RRR_TASK.replace("alpha_deg = 30.0\n", "", 1)
-    with pytest.raises(TaskFileError, match=r": poses\[1\]\.alpha_deg: missing$"):
-        load_task(_write(tmp_path, text))
-    text = RRR_TASK.replace("alpha_deg = 30.0", "pitch_deg = 30.0", 1)
-    with pytest.raises(
-        TaskFileError,
-        match=r": poses\[1\]\.pitch_deg: unknown key; expected one of: "
-        r"name, x_mm, y_mm, alpha_deg$",
-    ):
-        load_task(_write(tmp_path, text))
+def test_rrr_poses_need_their_platform_keys(task_file):
+    path = task_file(RRR_TASK.replace("alpha_deg = 30.0\n", "", 1))
+    error = _refused(path, "poses[1].alpha_deg", "missing")
+    assert str(error) == f"{path}: poses[1].alpha_deg: missing"
+    path = task_file(RRR_TASK.replace("alpha_deg = 30.0", "pitch_deg = 30.0", 1))
+    error = _refused(path, "poses[1].pitch_deg", "unknown key")
+    assert str(error) == (
+        f"{path}: poses[1].pitch_deg: unknown key; expected one of: name, x_mm, y_mm, alpha_deg"
+    )
 
 
-def test_invalid_toml_names_the_file(tmp_path):
-    path = _write(tmp_path, "robot = arm\n")
+def test_invalid_toml_names_the_file(task_file):
+    path = task_file("robot = arm\n")
     with pytest.raises(TaskFileError, match=rf"^{path}: not valid TOML: .*line 1"):
         load_task(path)
 
@@ -328,8 +349,8 @@ def test_every_obstacle_of_three_obstacles_stands_in_the_quintic_path():
         assert any(obstacle.contains(tuple(p)) for points in gripper for p in points), obstacle.name
 
 
-def test_task_without_obstacles_has_none_and_the_reports_cube(tmp_path):
-    task = load_task(_write(tmp_path, ARM_TASK))
+def test_task_without_obstacles_has_none_and_the_reports_cube(load_text):
+    task = load_text(ARM_TASK)
     assert task.scene == Scene((), TABLE, REPORT_CUBE)
 
 
@@ -339,8 +360,8 @@ def test_task_built_in_code_defaults_to_an_empty_scene():
     assert task.scene.obstacles == ()
 
 
-def test_scene_is_read_in_si_and_stands_on_the_table(tmp_path):
-    scene = load_task(_write(tmp_path, SCENE_TASK)).scene
+def test_scene_is_read_in_si_and_stands_on_the_table(load_text):
+    scene = load_text(SCENE_TASK).scene
     pillar, crate, ball = scene.obstacles
     assert pillar == Cylinder("pillar", (0.15, 0.15, TABLE.top_z), 0.04, 0.4 - TABLE.top_z)
     assert crate == Box(
@@ -353,7 +374,7 @@ def test_scene_is_read_in_si_and_stands_on_the_table(tmp_path):
 
 @pytest.mark.parametrize("z_mm", [0.0, -0.0, -5.0, -12.5], ids=lambda z: f"z{z:g}")
 @pytest.mark.parametrize("shape", ["cylinder", "box"])
-def test_bottom_face_between_table_and_base_plane_moves_to_the_table(tmp_path, shape, z_mm):
+def test_bottom_face_between_table_and_base_plane_moves_to_the_table(load_text, shape, z_mm):
     sizes = (
         "radius_mm = 40.0\nheight_mm = 100.0" if shape == "cylinder" else "size_mm = [1, 2, 100]"
     )
@@ -361,33 +382,33 @@ def test_bottom_face_between_table_and_base_plane_moves_to_the_table(tmp_path, s
         f'\n[[obstacles]]\nname = "o"\nshape = "{shape}"\n'
         f"position_mm = [150.0, 150.0, {z_mm}]\n{sizes}\n"
     )
-    (obstacle,) = load_task(_write(tmp_path, text)).scene.obstacles
+    (obstacle,) = load_text(text).scene.obstacles
     height = obstacle.height if isinstance(obstacle, Cylinder) else obstacle.size[2]
     assert obstacle.position == (0.15, 0.15, TABLE.top_z)
     assert obstacle.position[2] + height == pytest.approx((z_mm + 100.0) * MM, abs=SCENE_TOL_M)
 
 
-def test_raised_obstacles_are_kept_where_given(tmp_path):
+def test_raised_obstacles_are_kept_where_given(load_text):
     text = SCENE_TASK.replace("[150.0, 150.0, 0.0]", "[150.0, 150.0, 20.0]", 1)
     text = text.replace("[150.0, -150.0, 0.0]", "[150.0, -150.0, 0.001]", 1)
     text = text.replace("[200.0, 60.0, 300.0]", "[200.0, 60.0, 17.5]", 1)  # resting on the table
-    pillar, crate, ball = load_task(_write(tmp_path, text)).scene.obstacles
+    pillar, crate, ball = load_text(text).scene.obstacles
     assert (pillar.position, pillar.height) == ((0.15, 0.15, 0.02), 0.4)
     assert (crate.position, crate.size[2]) == ((0.15, -0.15, 1e-6), 0.35)
     assert ball.position == (0.2, 0.06, 0.0175)
 
 
-def test_cube_table_replaces_the_reports_cube_key_by_key(tmp_path):
+def test_cube_table_replaces_the_reports_cube_key_by_key(load_text):
     text = SCENE_TASK.replace(
         "size_mm = 25.0\n", "size_mm = 30.0\nyaw_deg = 90.0\nmass_kg = 0.02\nfriction = 0.5\n"
     ).replace("[0.0, 300.0, 0.0]\nsize_mm", "[50.0, 250.0, 2.5]\nsize_mm")
-    cube = load_task(_write(tmp_path, text)).scene.cube
+    cube = load_text(text).scene.cube
     assert cube == Cube((0.05, 0.25, 0.0025), 0.03, math.radians(90.0), 0.02, 0.5)
     text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\ncube = {size_mm = 20}\n')
-    cube = load_task(_write(tmp_path, text)).scene.cube
+    cube = load_text(text).scene.cube
     assert cube == Cube(REPORT_CUBE.position, 0.02)
     text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\ncube = {}\n')
-    assert load_task(_write(tmp_path, text)).scene.cube == REPORT_CUBE
+    assert load_text(text).scene.cube == REPORT_CUBE
 
 
 _WITHIN = "must lie within 0.1..10000 mm"
@@ -563,16 +584,9 @@ _CYLINDER_KEYS = "a cylinder takes: name, shape, position_mm, radius_mm, height_
     ],
     ids=lambda v: v if isinstance(v, str) and "." in v and " " not in v else None,
 )
-def test_malformed_scene_field_is_named_in_one_line(tmp_path, old, new, field, problem):
+def test_malformed_scene_field_is_named_in_one_line(task_file, old, new, field, problem):
     assert old in SCENE_TASK
-    path = _write(tmp_path, SCENE_TASK.replace(old, new, 1))
-    with pytest.raises(TaskFileError) as info:
-        load_task(path)
-    message = str(info.value)
-    assert "\n" not in message
-    assert message.startswith(f"{path}: {field}: ")
-    assert problem in message
-    assert (info.value.path, info.value.field) == (str(path), field)
+    _refused(task_file(SCENE_TASK.replace(old, new, 1)), field, problem)
 
 
 @pytest.mark.parametrize(
@@ -587,16 +601,14 @@ def test_malformed_scene_field_is_named_in_one_line(tmp_path, old, new, field, p
     ],
     ids=["number", "table", "numbers", "arrays", "cube_number", "cube_false"],
 )
-def test_scene_keys_of_the_wrong_kind_are_refused(tmp_path, top, field, problem):
-    path = _write(tmp_path, ARM_TASK.replace('robot = "arm"\n', f'robot = "arm"\n{top}\n'))
-    with pytest.raises(TaskFileError) as info:
-        load_task(path)
-    assert str(info.value) == f"{path}: {field}: {problem}"
+def test_scene_keys_of_the_wrong_kind_are_refused(task_file, top, field, problem):
+    path = task_file(ARM_TASK.replace('robot = "arm"\n', f'robot = "arm"\n{top}\n'))
+    assert str(_refused(path, field, problem)) == f"{path}: {field}: {problem}"
 
 
-def test_empty_obstacle_array_means_no_obstacle(tmp_path):
+def test_empty_obstacle_array_means_no_obstacle(load_text):
     text = ARM_TASK.replace('robot = "arm"\n', 'robot = "arm"\nobstacles = []\n')
-    assert load_task(_write(tmp_path, text)).scene.obstacles == ()
+    assert load_text(text).scene.obstacles == ()
 
 
 @pytest.mark.parametrize(
@@ -623,20 +635,18 @@ def test_empty_obstacle_array_means_no_obstacle(tmp_path):
     ],
     ids=["base", "cube_in_box", "cube_in_cylinder"],
 )
-def test_obstacle_enclosing_the_base_or_the_cube_is_refused(tmp_path, old, new, field, problem):
+def test_obstacle_enclosing_the_base_or_the_cube_is_refused(task_file, old, new, field, problem):
     assert old in SCENE_TASK
-    path = _write(tmp_path, SCENE_TASK.replace(old, new, 1))
-    with pytest.raises(TaskFileError) as info:
-        load_task(path)
-    assert str(info.value) == f"{path}: {field}: {problem}"
+    path = task_file(SCENE_TASK.replace(old, new, 1))
+    assert str(_refused(path, field, problem)) == f"{path}: {field}: {problem}"
 
 
-def test_obstacle_over_a_moved_cube_start_is_fine(tmp_path):
+def test_obstacle_over_a_moved_cube_start_is_fine(load_text):
     text = SCENE_TASK.replace("[150.0, -150.0, 0.0]", "[0.0, 300.0, 0.0]", 1)
     text = text.replace(
         "[cube]\nposition_mm = [0.0, 300.0, 0.0]", "[cube]\nposition_mm = [0, 250, 0]"
     )
-    scene = load_task(_write(tmp_path, text)).scene
+    scene = load_text(text).scene
     assert scene.obstacle("crate").position[:2] == (0.0, 0.3)
     assert scene.cube is not None
     assert scene.cube.position == (0.0, 0.25, 0.0)
@@ -650,18 +660,16 @@ def test_obstacle_over_a_moved_cube_start_is_fine(tmp_path):
     ],
     ids=["obstacles", "cube"],
 )
-def test_rrr_tasks_refuse_a_scene(tmp_path, extra):
+def test_rrr_tasks_refuse_a_scene(task_file, extra):
     key = extra.strip("[]").split("]")[0].strip("[")
-    path = _write(tmp_path, f"{RRR_TASK}\n{extra}\n")
-    with pytest.raises(TaskFileError) as info:
-        load_task(path)
-    assert str(info.value) == (
+    path = task_file(f"{RRR_TASK}\n{extra}\n")
+    assert str(_refused(path, key, "has no obstacles or cube")) == (
         f"{path}: {key}: the planar 3-RRR parallel robot has no obstacles or cube yet; remove it"
     )
 
 
-def test_rrr_task_scene_has_no_obstacle_and_no_cube(tmp_path):
-    assert load_task(_write(tmp_path, RRR_TASK)).scene == Scene((), cube=None)
+def test_rrr_task_scene_has_no_obstacle_and_no_cube(load_text):
+    assert load_text(RRR_TASK).scene == Scene((), cube=None)
 
 
 @pytest.mark.parametrize(
@@ -669,10 +677,326 @@ def test_rrr_task_scene_has_no_obstacle_and_no_cube(tmp_path):
     [f"robot = {'9' * 5000}\n", f"robot = {'[' * 5000}{']' * 5000}\n"],
     ids=["integer_of_5000_digits", "arrays_nested_5000_deep"],
 )
-def test_toml_the_parser_cannot_hold_is_a_task_file_error(tmp_path, text):
-    path = _write(tmp_path, text)
+def test_toml_the_parser_cannot_hold_is_a_task_file_error(task_file, text):
+    path = task_file(text)
     with pytest.raises(TaskFileError, match=rf"^{path}: not valid TOML: "):
         load_task(path)
+
+
+# ------------------------------------------ text, sanity bounds, building
+
+
+def _named(field: str, value: str) -> str:
+    """The scene task with ``field`` (a name or the description) set to the TOML ``value``."""
+    text = SCENE_TASK.replace(
+        'robot = "arm"\n', 'name = "pick"\ndescription = "Pick it up"\nrobot = "arm"\n', 1
+    )
+    old = {
+        "name": 'name = "pick"',
+        "description": 'description = "Pick it up"',
+        "poses[1].name": 'name = "home"',
+        "obstacles[0].name": 'name = "pillar"',
+    }[field]
+    key = old.split(" = ")[0]
+    return text.replace(old, f"{key} = {value}", 1)
+
+
+_NAME_FIELDS = ("name", "description", "poses[1].name", "obstacles[0].name")
+
+
+@pytest.mark.parametrize("field", _NAME_FIELDS)
+@pytest.mark.parametrize(
+    ("value", "problem"),
+    [
+        ('"a\\u0000b"', "character U+0000 at index 1"),
+        ('"a\\nb"', "character U+000A at index 1"),
+        ('"x\\r"', "character U+000D at index 1"),
+        ('"\\u001b[31mred"', "character U+001B at index 0"),
+        ('"tab\\there"', "character U+0009 at index 3"),
+        ('"\\u202eevil"', "character U+202E at index 0"),
+        ('"a\\u00a0b"', "character U+00A0 at index 1"),
+        ('"a\\u2028b"', "character U+2028 at index 1"),
+    ],
+    ids=["nul", "newline", "return", "escape", "tab", "bidi_override", "nbsp", "line_sep"],
+)
+def test_names_and_description_with_control_characters_are_refused(
+    task_file, field, value, problem
+):
+    what = "printable text" if field == "description" else "a non-empty printable string"
+    error = _refused(task_file(_named(field, value)), field, f"must be {what}, got ")
+    assert f"({problem} is a control, format or whitespace character)" in str(error)
+
+
+@pytest.mark.parametrize(
+    ("field", "length"),
+    [("name", 101), ("poses[1].name", 101), ("obstacles[0].name", 101), ("description", 1001)],
+)
+def test_names_and_description_of_absurd_length_are_refused(task_file, field, length):
+    path = task_file(_named(field, f'"{"x" * length}"'))
+    error = _refused(path, field, f"must be at most {length - 1} characters, got {length}: ")
+    assert len(str(error)) < len(str(path)) + 200  # the value itself is shortened
+
+
+@pytest.mark.parametrize("field", ["name", "poses[1].name", "obstacles[0].name"])
+@pytest.mark.parametrize("value", ['""', '"   "'], ids=["empty", "blank"])
+def test_names_may_not_be_empty_or_blank(task_file, field, value):
+    _refused(task_file(_named(field, value)), field, "must be a non-empty printable string")
+
+
+def test_names_take_any_script_punctuation_and_the_limit_lengths(load_text):
+    name = "Pick & place – 置く (v2.1)! «ok» ‘ß’ é"
+    text = _named("name", f'"{name}"').replace('name = "home"', f'name = "{"h" * 100}"', 1)
+    text = text.replace('description = "Pick it up"', f'description = "{"d" * 1000}"', 1)
+    task = load_text(text)
+    assert task.name == name
+    assert task.poses[1].name == "h" * 100
+    assert task.description == "d" * 1000
+    assert load_text(_named("description", '""')).description == ""
+
+
+@pytest.mark.parametrize(
+    "stem", ["tab\there", "esc\x1b[2J", "   ", "x" * 101], ids=["tab", "escape", "blank", "long"]
+)
+def test_a_file_stem_that_is_no_name_needs_a_name_key(tmp_path, stem):
+    path = tmp_path / f"{stem}.toml"
+    path.write_text(ARM_TASK, encoding="utf-8")
+    _refused(path, "name", "missing, and the file's stem")
+    path.write_text(f'name = "fine"\n{ARM_TASK}', encoding="utf-8")
+    assert load_task(path).name == "fine"
+
+
+def test_unknown_key_with_control_characters_is_named_in_one_line(task_file):
+    path = task_file(ARM_TASK.replace('type = "quintic"', 'type = "quintic"\n"a\\nb" = 1', 1))
+    _refused(path, "trajectory.'a\\nb'", "unknown key")
+
+
+def test_huge_values_are_shortened_in_messages(task_file):
+    path = task_file(ARM_TASK.replace("pitch_deg = -90.0", f'pitch_deg = "{"x" * 10_000}"', 1))
+    error = _refused(path, "poses[0].pitch_deg", "must be a number, got 'xxx")
+    assert len(str(error)) < len(str(path)) + 120
+
+
+_DURATION_RANGE = f"must lie within {MIN_SEGMENT_S:g}..{MAX_SEGMENT_S:g} s, got "
+
+
+@pytest.mark.parametrize(
+    ("value", "shown"),
+    [
+        ("5e-324", "5e-324"),
+        ("1e-300", "1e-300"),
+        ("0.0009", "0.0009"),
+        ("3600.5", "3600.5"),
+        ("1e300", "1e+300"),
+        ("6.5e306", "6.5e+306"),
+        ("1" + "0" * 20, "1" + "0" * 20),
+    ],
+    ids=lambda v: v[:8],
+)
+@pytest.mark.parametrize("form", ["one", "per_segment"])
+def test_segment_duration_outside_the_bounds_is_refused_with_the_range(
+    task_file, value, shown, form
+):
+    field = "trajectory.segment_duration_s"
+    if form == "one":
+        new = f"segment_duration_s = {value}"
+    else:
+        new, field = f"segment_duration_s = [1.0, {value}]", f"{field}[1]"
+    path = task_file(RRR_TASK.replace("segment_duration_s = [1.0, 2.0]", new, 1))
+    assert _DURATION_RANGE == "must lie within 0.001..3600 s, got "
+    _refused(path, field, _DURATION_RANGE + shown)
+
+
+def test_segment_durations_at_the_bounds_load(load_text):
+    new = f"segment_duration_s = [{MIN_SEGMENT_S!r}, {MAX_SEGMENT_S!r}]"
+    task = load_text(RRR_TASK.replace("segment_duration_s = [1.0, 2.0]", new, 1))
+    assert task.durations == (MIN_SEGMENT_S, MAX_SEGMENT_S)
+
+
+_MM_RANGE = "must lie within -10000..10000 mm (+-10 m), got "
+_DEG_RANGE = "must lie within -720..720 deg (two turns), got "
+
+
+@pytest.mark.parametrize(
+    ("text", "old", "new", "field", "problem"),
+    [
+        (
+            ARM_TASK,
+            "position_mm = [0.0, 300.0, 0.0]",
+            "position_mm = [0.0, 1e300, 0.0]",
+            "poses[0].position_mm[1]",
+            _MM_RANGE + "1e+300",
+        ),
+        (
+            ARM_TASK,
+            "position_mm = [0.0, 300.0, 0.0]",
+            "position_mm = [0.0, 300.0, -10000.001]",
+            "poses[0].position_mm[2]",
+            _MM_RANGE + "-10000.001",
+        ),
+        (ARM_TASK, "pitch_deg = -90.0", "pitch_deg = 1e300", "poses[0].pitch_deg", _DEG_RANGE),
+        (
+            ARM_TASK,
+            "pitch_deg = -90.0",
+            "pitch_deg = -90.0\nroll_deg = 6.5e306",
+            "poses[0].roll_deg",
+            _DEG_RANGE + "6.5e+306",
+        ),
+        (
+            ARM_TASK,
+            "q_deg = [0.0, 90.0, -90.0, 0.0, 180.0]",
+            "q_deg = [0.0, 90.0, -90.0, 0.0, -720.5]",
+            "poses[1].q_deg[4]",
+            _DEG_RANGE + "-720.5",
+        ),
+        (RRR_TASK, "x_mm = 300.0", "x_mm = 6.5e306", "poses[2].x_mm", _MM_RANGE + "6.5e+306"),
+        (RRR_TASK, "y_mm = 250.0", "y_mm = -1e300", "poses[2].y_mm", _MM_RANGE),
+        (RRR_TASK, "alpha_deg = -40.0", "alpha_deg = 1e300", "poses[2].alpha_deg", _DEG_RANGE),
+        (SCENE_TASK, "yaw_deg = -45.0", "yaw_deg = 1e300", "obstacles[1].yaw_deg", _DEG_RANGE),
+        (
+            SCENE_TASK,
+            "size_mm = 25.0",
+            "size_mm = 25.0\nyaw_deg = -1e9",
+            "cube.yaw_deg",
+            _DEG_RANGE + "-1000000000.0",
+        ),
+    ],
+    ids=lambda v: v if isinstance(v, str) and "." in v and " " not in v else None,
+)
+def test_pose_coordinates_and_angles_are_bounded(task_file, text, old, new, field, problem):
+    assert old in text
+    _refused(task_file(text.replace(old, new, 1)), field, problem)
+
+
+_HUGE = "1" + "0" * 400
+_DEEP = "[" * 400 + "1" + "]" * 400
+_TOO_DEEP = "[" * 600 + "1" + "]" * 600
+
+
+@pytest.mark.parametrize(
+    ("text", "old", "new", "field", "problem"),
+    [
+        (
+            ARM_TASK,
+            'type = "quintic"',
+            f'type = "quintic"\nsegment_duration_s = {_HUGE}',
+            "trajectory.segment_duration_s",
+            "must be finite, got an integer beyond 1e308",
+        ),
+        (
+            ARM_TASK,
+            "q_deg = [0.0, 90.0, -90.0, 0.0, 180.0]",
+            f"q_deg = [0.0, 90.0, -90.0, 0.0, -{_HUGE}]",
+            "poses[1].q_deg[4]",
+            "must be finite, got an integer beyond 1e308",
+        ),
+        (RRR_TASK, "x_mm = 300.0", f"x_mm = {_HUGE}", "poses[2].x_mm", "beyond 1e308"),
+        (ARM_TASK, "pitch_deg = -90.0", f"pitch_deg = {_DEEP}", "poses[0].pitch_deg", "[[[[..."),
+        (ARM_TASK, 'robot = "arm"', f"robot = {_DEEP}", "robot", "must be a string, got [[[["),
+        (ARM_TASK, "pitch_deg = -90.0", f"pitch_deg = {_TOO_DEEP}", None, "not valid TOML: "),
+    ],
+    ids=["duration_400_digits", "q_400_digits", "x_400_digits", "deep", "deep_robot", "too_deep"],
+)
+def test_huge_integers_and_deep_nesting_are_task_file_errors(
+    task_file, text, old, new, field, problem
+):
+    assert old in text
+    error = _refused(task_file(text.replace(old, new, 1)), field, problem)
+    assert len(str(error)) < 400
+
+
+def _assert_finite_or_typed_error(task: Task, kind: str | None) -> None:
+    """Building ``task``'s motion of ``kind`` gives finite samples or a LynxsimError."""
+    try:
+        motion = motion_builder(task.robot)(task, kind)
+    except LynxsimError:
+        return
+    assert math.isfinite(motion.duration), (kind, motion.duration)
+    sample = motion.sample(np.linspace(0.0, motion.duration, 101))
+    for values in sample:
+        assert np.isfinite(values).all(), (kind, values)
+
+
+_P1 = "position_mm = [0.0, 300.0, 0.0]\npitch_deg = -90.0"
+_P2 = "position_mm = [0.0, 250.0, 300.0]\npitch_deg = 0.0"
+_Q_UP = "q_deg = [0.0, 0.0, 0.0, 0.0, 0.0]"
+_A = "x_mm = 200.0\ny_mm = 150.0\nalpha_deg = 0.0"
+_B = "x_mm = 210.0\ny_mm = 150.0\nalpha_deg = 0.0"
+_FAR = "x_mm = 10000.0\ny_mm = -10000.0\nalpha_deg = 720.0"
+_FAR2 = "x_mm = -10000.0\ny_mm = 10000.0\nalpha_deg = -720.0"
+
+
+def _task_text(robot: str, trajectory: str, *poses: str) -> str:
+    body = "".join(f"[[poses]]\n{p}\n" for p in poses)
+    return f'robot = "{robot}"\n[trajectory]\ntype = "quintic"\n{trajectory}\n{body}'
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        _task_text("arm", "", _P1, _P2),
+        _task_text("arm", "", _Q_UP, _P1),
+        _task_text("arm", "segment_duration_s = 0.001", _P1, _P2),
+        _task_text("arm", "segment_duration_s = 0.001\nstretch = true", _P1, _P2, _P1),
+        _task_text("arm", "segment_duration_s = 3600", _P1, _P2),
+        _task_text("arm", "pass_through = true", _P1, _P2, _P1),
+        _task_text("arm", "segment_duration_s = 1.0", _P1, _P1, _P2),
+        _task_text("arm", "", "position_mm = [5e-324, 0.0, 0.0]\npitch_deg = 0.0", _P1),
+        _task_text("arm", "", "position_mm = [10000.0, -10000.0, 10000.0]\npitch_deg = 720", _P1),
+        _task_text("arm", "", "q_deg = [720.0, -720.0, 720.0, -720.0, 720.0]", _P1),
+        _task_text("rrr", "", _A, _B),
+        _task_text("rrr", "pass_through = true", _A, _B, _A),
+        _task_text("rrr", "pass_through = true\nsegment_duration_s = 3600", _FAR, _FAR2),
+        _task_text("rrr", "segment_duration_s = 0.001\nstretch = true", _FAR, _FAR2, _A),
+        _task_text("rrr", "", "x_mm = 5e-324\ny_mm = 0.0\nalpha_deg = 1e-300", _A),
+        _task_text("rrr", "pass_through = true", _A, _B, _A).replace(
+            "x_mm = 200.0", "x_mm = 1e300"
+        ),
+        _task_text("rrr", "pass_through = true", _A, _B).replace("y_mm = 150.0", "y_mm = 1.8e308"),
+        _task_text("rrr", "", _A, _B).replace("x_mm = 210.0", "x_mm = 6.5e306"),
+        _task_text("arm", "", _P1, _P2).replace("0.0, 250.0, 300.0", "0.0, 1e300, 300.0"),
+    ],
+    ids=[
+        "arm",
+        "arm_straight_up",
+        "arm_shortest_durations",
+        "arm_shortest_durations_stretched",
+        "arm_longest_durations",
+        "arm_pass_through",
+        "arm_pause",
+        "arm_denormal_coordinate",
+        "arm_at_the_bounds",
+        "arm_joints_at_one_turn",
+        "rrr",
+        "rrr_closed",
+        "rrr_at_the_bounds",
+        "rrr_at_the_bounds_stretched",
+        "rrr_denormal",
+        "rrr_1e300",
+        "rrr_max_float",
+        "rrr_6.5e306",
+        "arm_1e300",
+    ],
+)
+def test_task_loads_and_builds_finite_of_every_type_or_raises_typed_errors(task_file, text):
+    path = task_file(text)
+    try:
+        task = load_task(path)
+    except TaskFileError as error:
+        refused: TaskFileError | None = error
+    else:
+        refused = None
+    if refused is not None:
+        assert (refused.path, "\n" in str(refused)) == (str(path), False)
+        return
+    for kind in (None, *TrajectoryKind):
+        _assert_finite_or_typed_error(task, kind)
+
+
+def test_rrr_task_of_a_type_not_planned_loads_and_its_builder_lists_the_planned_ones(load_text):
+    task = load_text(RRR_TASK.replace('type = "line"', 'type = "cubic"', 1))
+    assert task.trajectory is TrajectoryKind.CUBIC
+    with pytest.raises(InvalidInputError, match=r"'cubic' is not planned .* one of: quintic$"):
+        motion_builder("rrr")(task, None)
 
 
 # ------------------------------------------ property test: mutated scenes
