@@ -15,8 +15,9 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
-from lynxsim.errors import InvalidInputError
+from lynxsim.angles import as_real_array
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
 
 __all__ = [
     "FRAME_NAMES",
@@ -54,15 +55,18 @@ class ToolPose(NamedTuple):
     roll: FloatArray
 
 
-def as_joint_array(q: npt.ArrayLike) -> FloatArray:
-    """Return ``q`` as a float array of shape (..., 5) or raise.
+def as_joint_array(q: npt.ArrayLike, name: str = "q") -> FloatArray:
+    """Return ``q`` as a finite float array of shape (..., 5) [rad] or raise.
 
     Raises:
-        InvalidInputError: If the last axis does not have length 5.
+        InvalidInputError: Not real numbers, or the last axis does not have length 5.
+        NonFiniteInputError: An angle is NaN or infinite.
     """
-    arr = np.asarray(q, dtype=float)
+    arr = as_real_array(q, name)
     if arr.ndim == 0 or arr.shape[-1] != 5:
-        raise InvalidInputError(f"joint array must have shape (..., 5), got {arr.shape}")
+        raise InvalidInputError(f"{name} must have shape (..., 5), got {arr.shape}")
+    if not np.isfinite(arr).all():
+        raise NonFiniteInputError(f"{name} must be finite joint angles [rad], got NaN or infinity")
     return arr
 
 
@@ -96,8 +100,14 @@ def frame_transforms(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> Floa
     Returns:
         ``T_base_frame``, shape (..., 7, 4, 4) [m], frames in the order of
         :data:`FRAME_NAMES`.
+
+    Raises:
+        InvalidInputError: ``q`` is not real numbers of shape (..., 5), or
+            ``geometry`` not an :class:`~lynxsim.arm.geometry.ArmGeometry`.
+        NonFiniteInputError: An angle is NaN or infinite.
     """
     q = as_joint_array(q)
+    geometry = check_geometry(geometry)
     batch = q.shape[:-1]
     out = np.empty(batch + (7, 4, 4))
     current = np.broadcast_to(np.eye(4), batch + (4, 4))
@@ -120,6 +130,9 @@ def fk(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> FloatArray:
 
     Returns:
         ``T_base_tool``, shape (..., 4, 4) [m]; its z axis is the tool axis.
+
+    Raises:
+        InvalidInputError, NonFiniteInputError: As :func:`frame_transforms`.
     """
     return frame_transforms(q, geometry)[..., 6, :, :]
 
@@ -134,6 +147,9 @@ def frame_origins(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> FloatAr
     Returns:
         Positions in the base frame, shape (..., 7, 3) [m], in the order of
         :data:`FRAME_NAMES`.
+
+    Raises:
+        InvalidInputError, NonFiniteInputError: As :func:`frame_transforms`.
     """
     return frame_transforms(q, geometry)[..., :3, 3]
 
@@ -147,8 +163,12 @@ def tool_pose(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> ToolPose:
 
     Returns:
         The :class:`ToolPose`, batch shape ``q.shape[:-1]``.
+
+    Raises:
+        InvalidInputError, NonFiniteInputError: As :func:`frame_transforms`.
     """
     q = as_joint_array(q)
+    geometry = check_geometry(geometry)
     q1, q2, q3, q4, q5 = np.moveaxis(q, -1, 0)
     a23 = q2 + q3
     pitch = a23 + q4

@@ -12,7 +12,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["LYNX_ARM", "ArmGeometry", "DHRow"]
+from lynxsim.errors import InvalidInputError
+
+__all__ = ["LYNX_ARM", "ArmGeometry", "DHRow", "check_geometry"]
 
 _MM = 1e-3
 
@@ -35,6 +37,10 @@ class DHRow:
     d: float
     theta_offset: float
 
+    def __post_init__(self) -> None:
+        for name in ("a", "alpha", "d", "theta_offset"):
+            object.__setattr__(self, name, _finite_number(getattr(self, name), f"DH {name}"))
+
 
 @dataclass(frozen=True)
 class ArmGeometry:
@@ -55,6 +61,31 @@ class ArmGeometry:
     joint_names: tuple[str, ...] = field(
         default=("base", "shoulder", "elbow", "wrist_pitch", "wrist_roll")
     )
+
+    def __post_init__(self) -> None:
+        if not (
+            isinstance(self.dh, tuple)
+            and len(self.dh) == 5
+            and all(isinstance(row, DHRow) for row in self.dh)
+        ):
+            raise InvalidInputError(f"dh must be a tuple of 5 DHRow, got {self.dh!r}")
+        length = _finite_number(self.tool_length, "tool_length")
+        if length < 0.0:
+            raise InvalidInputError(f"tool_length must be >= 0 m, got {length!r}")
+        object.__setattr__(self, "tool_length", length)
+        for name in ("q_min", "q_max"):
+            values = getattr(self, name)
+            if not (isinstance(values, tuple | list) and len(values) == 5):
+                raise InvalidInputError(f"{name} must be 5 joint angles [rad], got {values!r}")
+            object.__setattr__(
+                self, name, tuple(_finite_number(v, f"{name}[{i}]") for i, v in enumerate(values))
+            )
+        for i, (lo, hi) in enumerate(zip(self.q_min, self.q_max)):
+            if lo > hi:
+                raise InvalidInputError(f"joint {i + 1}: q_min {lo!r} > q_max {hi!r} rad")
+        if self.dh[2].a <= 0.0 or self.dh[3].a <= 0.0:
+            lengths = (self.dh[2].a, self.dh[3].a)
+            raise InvalidInputError(f"upper arm and forearm lengths must be > 0 m, got {lengths}")
 
     @property
     def shoulder_height(self) -> float:
@@ -85,6 +116,30 @@ class ArmGeometry:
     def max_reach(self) -> float:
         """Largest distance from the shoulder axis to the tool point [m]."""
         return self.upper_arm + self.forearm + self.tool_length
+
+
+_MAX_PARAMETER = 1e3
+"""Largest magnitude of a geometry parameter [m or rad]: keeps products of them finite."""
+
+
+def _finite_number(value: object, name: str) -> float:
+    """``value`` as a float if it is a finite real number of magnitude <= 1e3, else raise."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise InvalidInputError(f"{name} must be a real number, got {value!r}")
+    try:
+        v = float(value)
+    except OverflowError:
+        v = math.inf
+    if not (math.isfinite(v) and abs(v) <= _MAX_PARAMETER):
+        raise InvalidInputError(f"{name} must be finite and at most {_MAX_PARAMETER:g}, got {v!r}")
+    return v
+
+
+def check_geometry(geometry: object) -> ArmGeometry:
+    """``geometry`` if it is an :class:`ArmGeometry`, else raise InvalidInputError."""
+    if geometry is LYNX_ARM or isinstance(geometry, ArmGeometry):
+        return geometry
+    raise InvalidInputError(f"geometry must be an ArmGeometry, got {geometry!r}")
 
 
 def _deg(values: tuple[float, ...]) -> tuple[float, ...]:

@@ -29,13 +29,15 @@ more); ``tests/arm/test_ik_scalar.py`` holds the two to the same answers.
 from __future__ import annotations
 
 import enum
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import LIMIT_TOL, wrap_angle
-from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.angles import LIMIT_TOL, as_real_array, wrap_angle
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
+from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES
 from lynxsim.errors import (
     InvalidInputError,
     JointRangeError,
@@ -129,6 +131,12 @@ class IKResult:
             raise JointRangeError(message, joint=int(self.joint[index]))
 
 
+def _largest(p: FloatArray) -> float:
+    """The finite coordinate of largest magnitude [m]."""
+    finite = p[np.isfinite(p)]
+    return float(finite[np.argmax(np.abs(finite))])
+
+
 def _range_violation(q: FloatArray, geometry: ArmGeometry) -> FloatArray:
     """Per-joint distance outside the joint range, shape of ``q`` [rad]."""
     return np.maximum(geometry.lower - q, 0.0) + np.maximum(q - geometry.upper, 0.0)
@@ -158,33 +166,52 @@ def ik(
     Returns:
         The :class:`IKResult`.
 
+    Non-finite targets are not an error: their status is ``NOT_FINITE``.
+
     Raises:
-        InvalidInputError: If the arrays do not broadcast to a batch of targets.
+        InvalidInputError: An argument is not real numbers (a string, None,
+            booleans, complex numbers, a ragged sequence...), ``position`` or
+            ``q_ref`` has the wrong last axis, a finite coordinate exceeds
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, the arrays do not
+            broadcast, or the batch exceeds :data:`~lynxsim.bounds.MAX_SAMPLES`
+            targets.
     """
-    p = np.asarray(position, dtype=float)
+    geometry = check_geometry(geometry)
+    p = as_real_array(position, "position")
     if p.ndim == 0 or p.shape[-1] != 3:
         raise InvalidInputError(f"position must have shape (..., 3), got {p.shape}")
-    ref = None if q_ref is None else np.asarray(q_ref, dtype=float)
+    far = np.abs(p) > MAX_COORDINATE_M  # NaN compares False; inf is caught below as NOT_FINITE
+    if far.any() and np.isfinite(p[far]).any():
+        raise InvalidInputError(
+            f"position coordinates must be within ±{MAX_COORDINATE_M:g} m "
+            f"(the arm reaches under 1 m), got {_largest(p):g} m"
+        )
+    ref = None if q_ref is None else as_real_array(q_ref, "q_ref")
     if ref is not None and (ref.ndim == 0 or ref.shape[-1] != 5):
         raise InvalidInputError(f"q_ref must have shape (..., 5), got {ref.shape}")
-    if roll is None:
-        roll = 0.0 if ref is None else ref[..., 4]
+    phi_in = as_real_array(pitch, "pitch")
+    roll_in = (0.0 if ref is None else ref[..., 4]) if roll is None else roll
+    roll_arr = as_real_array(roll_in, "roll")
     try:
-        batch = np.broadcast_shapes(p.shape[:-1], np.shape(pitch), np.shape(roll))
+        batch = np.broadcast_shapes(p.shape[:-1], phi_in.shape, roll_arr.shape)
         if ref is not None:
             batch = np.broadcast_shapes(batch, ref.shape[:-1])
     except ValueError as exc:
         raise InvalidInputError(f"IK inputs do not broadcast: {exc}") from None
-    n = int(np.prod(batch, dtype=int))
+    n = math.prod(batch)
+    if n > MAX_SAMPLES:
+        raise InvalidInputError(
+            f"IK batch of {n:,} targets (shape {batch}); at most {MAX_SAMPLES:,} per call"
+        )
     p = np.broadcast_to(p, batch + (3,)).reshape(n, 3)
-    phi = np.broadcast_to(np.asarray(pitch, dtype=float), batch).reshape(n)
-    q5 = np.broadcast_to(np.asarray(roll, dtype=float), batch).reshape(n)
+    phi = np.broadcast_to(phi_in, batch).reshape(n)
+    q5 = np.broadcast_to(roll_arr, batch).reshape(n)
 
     finite = np.isfinite(p).all(axis=-1) & np.isfinite(phi) & np.isfinite(q5)
     if not finite.all():
         p = np.where(finite[:, None], p, 0.0)
         phi = np.where(finite, phi, 0.0)
-    q5 = np.where(finite, np.mod(q5, 2 * np.pi), 0.0)
+    q5 = np.mod(np.where(finite, q5, 0.0), 2 * np.pi)
     x, y, z = p[:, 0], p[:, 1], p[:, 2]
 
     # Side 0 folds q1 into (-pi/2, pi/2]; side 1 turns it by pi. On side 1 the

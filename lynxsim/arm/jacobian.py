@@ -8,7 +8,8 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm.fk import as_joint_array, frame_transforms
-from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
+from lynxsim.errors import InvalidInputError
 
 __all__ = ["geometric_jacobian", "jacobian", "manipulability"]
 
@@ -27,8 +28,12 @@ def jacobian(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> FloatArray:
 
     Returns:
         Shape (..., 4, 5).
+
+    Raises:
+        InvalidInputError, NonFiniteInputError: As :func:`~lynxsim.arm.fk.frame_transforms`.
     """
     q = as_joint_array(q)
+    geometry = check_geometry(geometry)
     q1, q2, q3, q4, _ = np.moveaxis(q, -1, 0)
     l2, l3, lt = geometry.upper_arm, geometry.forearm, geometry.tool_length
     a2, a23, a234 = q2, q2 + q3, q2 + q3 + q4
@@ -71,6 +76,9 @@ def geometric_jacobian(q: npt.ArrayLike, geometry: ArmGeometry = LYNX_ARM) -> Fl
     Returns:
         Shape (..., 6, 5): rows 0–2 the tool point's linear velocity [m/rad],
         rows 3–5 the tool frame's angular velocity [rad/rad], in the base frame.
+
+    Raises:
+        InvalidInputError, NonFiniteInputError: As :func:`~lynxsim.arm.fk.frame_transforms`.
     """
     frames = frame_transforms(q, geometry)
     axes = frames[..., 1:6, :3, 2]  # z axis of frames 1..5, (..., 5, 3)
@@ -95,12 +103,17 @@ def manipulability(
 
     Returns:
         Shape (...); zero at singular configurations.
+
+    Raises:
+        InvalidInputError: A bad ``kind`` (lists the choices), or as
+            :func:`~lynxsim.arm.fk.frame_transforms`.
+        NonFiniteInputError: An angle is NaN or infinite.
     """
+    if not (isinstance(kind, str) and kind in ("position", "position_pitch")):
+        raise InvalidInputError(f"kind must be 'position' or 'position_pitch', got {kind!r}")
     j = jacobian(q, geometry)
     if kind == "position":
         j = j[..., :3, :]
-    elif kind != "position_pitch":
-        raise ValueError(f"kind must be 'position' or 'position_pitch', got {kind!r}")
     det = np.linalg.det(j @ np.swapaxes(j, -1, -2))
     out: FloatArray = np.sqrt(np.clip(det, 0.0, None))
     return out

@@ -21,10 +21,11 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import LIMIT_TOL, wrap_angle_float
-from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.angles import LIMIT_TOL, as_real_array, as_real_number, wrap_angle_float
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.arm.ik import IKStatus, ik
-from lynxsim.errors import InvalidInputError
+from lynxsim.bounds import MAX_COORDINATE_M
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
 
 __all__ = ["ik_nearest", "ik_one", "tool_pose_of"]
 
@@ -35,6 +36,9 @@ _HALF_PI = math.pi / 2
 _TAU = 2.0 * math.pi
 _isfinite = math.isfinite
 _wrap = wrap_angle_float
+
+_SEQUENCES = (list, tuple)
+_MAX_M = MAX_COORDINATE_M
 
 _Constants = tuple[float, ...]
 """``l2, l3, lt, h, l2², l3², 2 l2 l3``, then the joint limits widened by
@@ -65,13 +69,40 @@ def tool_pose_of(
 
     Returns:
         ``(x, y, z, pitch)`` in the base frame [m, m, m, rad].
+
+    Raises:
+        InvalidInputError: ``q`` is not 5 real numbers (a 5-vector), or
+            ``geometry`` not an :class:`~lynxsim.arm.geometry.ArmGeometry`.
+        NonFiniteInputError: An angle is NaN or infinite.
     """
-    q1, q2, q3, q4 = q[0], q[1], q[2], q[3]
+    if geometry is not LYNX_ARM:
+        geometry = check_geometry(geometry)
+    # Fast path: a list or tuple of 5 Python floats (what the envs pass); anything
+    # else, and every non-finite result, goes through the checks.
+    if type(q) in _SEQUENCES and len(q) == 5:
+        q1, q2, q3, q4, q5 = q
+        if not (
+            type(q1) is float
+            and type(q2) is float
+            and type(q3) is float
+            and type(q4) is float
+            and type(q5) is float
+        ):
+            q1, q2, q3, q4, q5 = _joints(q)
+    else:
+        q1, q2, q3, q4, q5 = _joints(q)
     a23 = q2 + q3
     pitch = a23 + q4
     l2, l3, lt = geometry.upper_arm, geometry.forearm, geometry.tool_length
-    reach = l2 * math.cos(q2) + l3 * math.cos(a23) + lt * math.cos(pitch)
-    z = geometry.shoulder_height + l2 * math.sin(q2) + l3 * math.sin(a23) + lt * math.sin(pitch)
+    try:
+        reach = l2 * math.cos(q2) + l3 * math.cos(a23) + lt * math.cos(pitch)
+        z = geometry.shoulder_height + l2 * math.sin(q2) + l3 * math.sin(a23) + lt * math.sin(pitch)
+        check = reach + z + (pitch - pitch) + (q1 - q1) + (q5 - q5)  # x - x: 0 if finite
+    except ValueError:  # math.cos(inf)
+        check = math.nan
+    if check - check != 0.0:  # NaN or infinity somewhere (or an overflowing pitch)
+        _joints(q)
+        raise InvalidInputError(f"q = {list(q)!r} [rad]: q2 + q3 + q4 overflows")
     return reach * math.cos(q1), reach * math.sin(q1), z, pitch
 
 
@@ -101,12 +132,57 @@ def ik_nearest(
 
     Returns:
         ``(status, q)``: ``q`` is a tuple of 5 joint angles [rad] when the
-        status is OK, else None.
+        status is OK, else None. A non-finite target is a status
+        (``NOT_FINITE``), not an error.
+
+    Raises:
+        InvalidInputError: An argument is not a real number (``x`` .. ``roll``
+            may also be arrays of one), ``q_ref`` not 5 of them, a finite
+            coordinate exceeds :data:`~lynxsim.bounds.MAX_COORDINATE_M`, or
+            ``geometry`` is not an :class:`~lynxsim.arm.geometry.ArmGeometry`.
     """
     if not (
-        _isfinite(x) and _isfinite(y) and _isfinite(z) and _isfinite(pitch) and _isfinite(roll)
+        type(x) is float
+        and type(y) is float
+        and type(z) is float
+        and type(pitch) is float
+        and type(roll) is float
     ):
-        return IKStatus.NOT_FINITE, None
+        x, y, z = _number(x, "x"), _number(y, "y"), _number(z, "z")
+        pitch, roll = _number(pitch, "pitch"), _number(roll, "roll")
+    if q_ref is not None:
+        if type(q_ref) in _SEQUENCES and len(q_ref) == 5:
+            r1, r2, r3, r4, r5 = q_ref
+            if not (
+                type(r1) is float
+                and type(r2) is float
+                and type(r3) is float
+                and type(r4) is float
+                and type(r5) is float
+            ):
+                r1, r2, r3, r4, r5 = _floats(q_ref, 5, "q_ref")
+        else:
+            r1, r2, r3, r4, r5 = _floats(q_ref, 5, "q_ref")
+        # A non-finite reference is no reference, as in lynxsim.arm.ik.
+        finite = _isfinite(r1) and _isfinite(r2) and _isfinite(r3)
+        if not (finite and _isfinite(r4) and _isfinite(r5)):
+            q_ref = None
+    if geometry is not LYNX_ARM:
+        geometry = check_geometry(geometry)
+    if not (
+        -_MAX_M <= x <= _MAX_M
+        and -_MAX_M <= y <= _MAX_M
+        and -_MAX_M <= z <= _MAX_M
+        and _isfinite(pitch)
+        and _isfinite(roll)
+    ):
+        if not (
+            _isfinite(x) and _isfinite(y) and _isfinite(z) and _isfinite(pitch) and _isfinite(roll)
+        ):
+            return IKStatus.NOT_FINITE, None
+        raise InvalidInputError(
+            f"tool point coordinates must be within ±{_MAX_M:g} m, got ({x:g}, {y:g}, {z:g}) m"
+        )
     l2, l3, lt, h, l2_sq, l3_sq, den, lo1, lo2, lo3, lo4, lo5, hi1, hi2, hi3, hi4, hi5 = (
         _LYNX_CONSTANTS if geometry is LYNX_ARM else _constants(geometry)
     )
@@ -145,11 +221,6 @@ def ik_nearest(
         (q1_b, up_b, -gamma, back - up_b + gamma),
         (q1_b, down_b, gamma, back - down_b - gamma),
     )
-    if q_ref is not None:
-        r1, r2, r3, r4, r5 = q_ref[0], q_ref[1], q_ref[2], q_ref[3], q_ref[4]
-        finite = _isfinite(r1) and _isfinite(r2) and _isfinite(r3)
-        if not (finite and _isfinite(r4) and _isfinite(r5)):
-            q_ref = None
     best: tuple[float, ...] | None = None
     best_score = math.inf
     for q1, q2, q3, q4 in candidates:
@@ -168,31 +239,28 @@ def ik_nearest(
     return IKStatus.OK, best
 
 
-def _floats(value: npt.ArrayLike, n: int, name: str) -> list[float]:
-    """``value`` as ``n`` Python floats, or InvalidInputError."""
+def _floats(value: object, n: int, name: str) -> list[float]:
+    """``value`` as ``n`` Python floats (not checked for finiteness), or InvalidInputError."""
     try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be {n} numbers, got {value!r}") from None
+        arr = as_real_array(value, name)
+    except InvalidInputError as exc:
+        raise InvalidInputError(f"{name} must be {n} numbers: {exc}") from None
     if arr.shape != (n,):
         raise InvalidInputError(f"{name} must have shape ({n},), got {arr.shape}")
     values: list[float] = arr.tolist()
     return values
 
 
-def _number(value: npt.ArrayLike, name: str) -> float:
-    """``value`` as one Python float (a 0-d or 1-element array is one), or InvalidInputError."""
-    if isinstance(value, float | int):
-        return float(value)
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InvalidInputError(f"{name} must be a number, got {value!r}") from None
-    if arr.size != 1 or arr.ndim > 1:
-        raise InvalidInputError(
-            f"{name} must be a number (or an array of one), got shape {arr.shape}"
-        )
-    return float(arr.reshape(()))
+def _joints(q: object) -> list[float]:
+    """``q`` as 5 finite Python floats, or InvalidInputError / NonFiniteInputError."""
+    values = _floats(q, 5, "q")
+    if not all(map(_isfinite, values)):
+        raise NonFiniteInputError(f"q must be finite joint angles [rad], got {values!r}")
+    return values
+
+
+_number = as_real_number
+"""``value`` as one Python float (a 0-d or 1-element array is one), or InvalidInputError."""
 
 
 def ik_one(
@@ -219,10 +287,20 @@ def ik_one(
         NonFiniteInputError: A coordinate is NaN or infinite.
         OutOfReachError: The wrist point is outside the links' reach.
         JointRangeError: Every solution violates a joint range (names the joint).
-        InvalidInputError: ``position`` is not a 3-vector, ``q_ref`` not a
-            5-vector, or ``pitch`` or ``roll`` not a number.
+        InvalidInputError: ``position`` is not a 3-vector (or a coordinate
+            exceeds :data:`~lynxsim.bounds.MAX_COORDINATE_M`), ``q_ref`` not a
+            5-vector, or ``pitch`` or ``roll`` not a number (booleans, complex
+            numbers, strings and None are not).
     """
-    x, y, z = _floats(position, 3, "position")
+    x: float
+    y: float
+    z: float
+    if isinstance(position, list | tuple) and len(position) == 3:
+        x, y, z = position
+        if not (type(x) is float and type(y) is float and type(z) is float):
+            x, y, z = _floats(position, 3, "position")
+    else:
+        x, y, z = _floats(position, 3, "position")
     phi = _number(pitch, "pitch")
     ref = None if q_ref is None else _floats(q_ref, 5, "q_ref")
     if roll is None:

@@ -78,6 +78,12 @@ JERK_RAMP_S = 0.1
 """Assumed time from zero to the acceleration limit at the jerk limit [s]."""
 
 
+_MIN_VALUE = 1e-9
+"""Smallest datasheet value accepted (keeps the derived gains away from overflow)."""
+_MAX_VALUE = 1e9
+"""Largest datasheet value accepted."""
+
+
 @dataclass(frozen=True)
 class ServoSpec:
     """A Hitec servo's datasheet values (6.0 V) and the quantities derived from them.
@@ -104,12 +110,26 @@ class ServoSpec:
     proportional_band: float = SERVO_BAND_RAD
 
     def __post_init__(self) -> None:
+        for name in ("joint", "model"):
+            value = getattr(self, name)
+            if not (isinstance(value, str) and value and value.isprintable()):
+                raise InvalidInputError(f"servo {name} must be a non-empty string, got {value!r}")
         for name in ("stall_torque_kgf_cm", "seconds_per_60deg", "armature", "proportional_band"):
             value = getattr(self, name)
-            if not (isinstance(value, float | int) and math.isfinite(value) and value > 0):
+            if isinstance(value, bool) or not isinstance(value, float | int):
                 raise InvalidInputError(
                     f"servo {self.model}: {name} must be a positive number, got {value!r}"
                 )
+            try:
+                v = float(value)
+            except OverflowError:  # an int beyond float64
+                v = math.inf
+            if not (math.isfinite(v) and _MIN_VALUE <= v <= _MAX_VALUE):
+                raise InvalidInputError(
+                    f"servo {self.model}: {name} must be a positive number from "
+                    f"{_MIN_VALUE:g} to {_MAX_VALUE:g}, got {value!r}"
+                )
+            object.__setattr__(self, name, v)
 
     @property
     def stall_torque(self) -> float:

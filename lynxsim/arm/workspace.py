@@ -12,8 +12,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import as_count
 from lynxsim.arm.fk import tool_pose
-from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
+from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["WorkspaceSamples", "sample_workspace"]
@@ -47,8 +49,8 @@ def sample_workspace(
     """Draw joint vectors uniformly from the joint ranges and evaluate the FK.
 
     Args:
-        n: Number of samples (> 0).
-        rng: Source of randomness.
+        n: Number of samples, 1 to :data:`~lynxsim.bounds.MAX_SAMPLES`.
+        rng: Source of randomness (a :class:`numpy.random.Generator`).
         geometry: The arm description.
         progress: Called as ``progress(done, n)`` after each chunk.
 
@@ -56,10 +58,17 @@ def sample_workspace(
         The :class:`WorkspaceSamples`.
 
     Raises:
-        InvalidInputError: If ``n`` is not positive.
+        InvalidInputError: ``n`` is not an integer from 1 to
+            :data:`~lynxsim.bounds.MAX_SAMPLES` (checked before anything is
+            allocated), ``rng`` not a Generator, ``progress`` not callable, or
+            ``geometry`` not an :class:`~lynxsim.arm.geometry.ArmGeometry`.
     """
-    if n <= 0:
-        raise InvalidInputError(f"number of samples must be positive, got {n}")
+    n = as_count(n, "number of samples", 1, MAX_SAMPLES)
+    if not isinstance(rng, np.random.Generator):
+        raise InvalidInputError(f"rng must be a numpy.random.Generator, got {rng!r}")
+    if progress is not None and not callable(progress):
+        raise InvalidInputError(f"progress must be callable or None, got {progress!r}")
+    geometry = check_geometry(geometry)
     q = rng.uniform(geometry.lower, geometry.upper, size=(n, 5))
     position = np.empty((n, 3))
     pitch = np.empty(n)

@@ -28,7 +28,9 @@ import lynxsim.sim  # noqa: F401
 # isort: split
 import mujoco
 
+from lynxsim.angles import as_count, as_real_array
 from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
+from lynxsim.bounds import MAX_CONTROL_DT_S, MAX_COORDINATE_M, check_range
 from lynxsim.envs.control import (
     ControlMode,
     JointSpaceController,
@@ -69,6 +71,10 @@ _GOAL_MARK_SITE = "place_target"
 """The scene's green disc on the table; it is moved below the goal (visual only)."""
 _DRAW_BATCH = 16
 _MAX_DRAWS = 100
+_MAX_FRAME_PX = 16_384
+"""Largest frame side accepted before the model's off-screen buffer is known [px]."""
+_MAX_PENALTY = 1e6
+"""Largest collision penalty (rewards are -1..0 or minus metres)."""
 
 
 class CollisionCheck(enum.Enum):
@@ -84,23 +90,46 @@ class CollisionCheck(enum.Enum):
     PHYSICS_STEP = "physics_step"
 
 
+def _real(value: object, name: str, low: float, high: float, unit: str = "") -> float:
+    """A real number (no bool, str, complex...) in ``[low, high]`` as a float, or raise.
+
+    Raises:
+        InvalidInputError: Not a real number, or out of range (the message states it).
+        NonFiniteInputError: NaN or infinity.
+    """
+    if isinstance(value, bool | np.bool_) or not isinstance(
+        value, int | float | np.integer | np.floating
+    ):
+        raise InvalidInputError(f"{name} must be a number, got {value!r}")
+    try:
+        return check_range(value, name, low, high, unit)  # type: ignore[arg-type]
+    except InvalidInputError as exc:
+        if not isinstance(value, int) and math.isnan(float(value)):
+            raise NonFiniteInputError(str(exc)) from None
+        if not isinstance(value, int) and math.isinf(float(value)):
+            raise NonFiniteInputError(str(exc)) from None
+        raise
+
+
 def check_control_dt(control_dt: float, timestep: float) -> int:
     """Frame skip for a control period, which must be a whole number of physics steps.
 
     Args:
-        control_dt: Control period [s].
+        control_dt: Control period [s], from ``timestep`` to
+            :data:`~lynxsim.bounds.MAX_CONTROL_DT_S`.
         timestep: Physics step [s].
 
     Returns:
         Physics steps per control step, >= 1.
 
     Raises:
-        InvalidInputError: If the period is not positive or not a multiple of the step.
+        InvalidInputError: The period is not a number, outside
+            [timestep, MAX_CONTROL_DT_S] (the message states the range), or not a
+            whole multiple of the step.
+        NonFiniteInputError: The period is NaN or infinite.
     """
-    if not (math.isfinite(control_dt) and control_dt > 0.0):
-        raise InvalidInputError(
-            f"control_dt must be a positive number of seconds, got {control_dt}"
-        )
+    timestep = _real(timestep, "timestep", 1e-9, MAX_CONTROL_DT_S, "s")
+    control_dt = _real(control_dt, "control_dt", timestep, MAX_CONTROL_DT_S, "s")
     ratio = control_dt / timestep
     n = round(ratio)
     if n < 1 or abs(ratio - n) > 1e-6:
@@ -114,7 +143,7 @@ def check_control_dt(control_dt: float, timestep: float) -> int:
 def _enum(kind: type[enum.Enum], value: object, name: str) -> Any:
     try:
         return kind(value.value if isinstance(value, kind) else value)
-    except ValueError:
+    except (ValueError, TypeError):
         choices = ", ".join(repr(m.value) for m in kind)
         raise InvalidInputError(f"{name} must be one of {choices}, got {value!r}") from None
 
@@ -176,23 +205,43 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         camera: str = "front",
         render_quality: Literal["fast", "default"] = "fast",
     ) -> None:
-        settings = RenderSettings(
-            width=width,
-            height=height,
-            camera=camera,
-            quality=_enum(Quality, render_quality, "render_quality"),
-        )
+        quality = _enum(Quality, render_quality, "render_quality")
+        if not isinstance(camera, str):
+            raise InvalidInputError(f"camera must be a camera name (a string), got {camera!r}")
+        width = as_count(width, "width", 1, _MAX_FRAME_PX)
+        height = as_count(height, "height", 1, _MAX_FRAME_PX)
+        settings = RenderSettings(width=width, height=height, camera=camera, quality=quality)
         self.control = _enum(ControlMode, control, "control")
         self.reward_type = _enum(RewardType, reward_type, "reward_type")
         self.collision_check = _enum(CollisionCheck, collision_check, "collision_check")
-        if not (math.isfinite(distance_threshold) and distance_threshold > 0.0):
-            raise InvalidInputError(f"distance_threshold must be > 0 m, got {distance_threshold}")
-        if not (math.isfinite(collision_penalty) and collision_penalty >= 0.0):
-            raise InvalidInputError(f"collision_penalty must be >= 0, got {collision_penalty}")
-        self.render_mode = render_mode
-        self.distance_threshold = float(distance_threshold)
-        self.collision_penalty = float(collision_penalty)
+        self.distance_threshold = _real(
+            distance_threshold, "distance_threshold", 0.0, MAX_COORDINATE_M, "m"
+        )
+        if self.distance_threshold == 0.0:
+            raise InvalidInputError("distance_threshold must be > 0 m, got 0")
+        self.collision_penalty = _real(collision_penalty, "collision_penalty", 0.0, _MAX_PENALTY)
+        if not isinstance(terminate_on_collision, bool | np.bool_):
+            raise InvalidInputError(
+                f"terminate_on_collision must be True or False, got {terminate_on_collision!r}"
+            )
         self.terminate_on_collision = bool(terminate_on_collision)
+        position_step = _real(position_step, "position_step", 0.0, MAX_COORDINATE_M, "m")
+        pitch_step = _real(pitch_step, "pitch_step", 0.0, 2.0 * math.pi, "rad")
+        joint_step = _real(joint_step, "joint_step", 0.0, 2.0 * math.pi, "rad")
+        for name, value in (
+            ("position_step", position_step),
+            ("pitch_step", pitch_step),
+            ("joint_step", joint_step),
+        ):
+            if value == 0.0:
+                raise InvalidInputError(f"{name} must be a positive number, got 0")
+        if render_mode is not None and not (
+            isinstance(render_mode, str) and render_mode in RENDER_MODES
+        ):
+            raise InvalidInputError(
+                f"render_mode must be None or one of {list(RENDER_MODES)}, got {render_mode!r}"
+            )
+        self.render_mode = render_mode
         if not isinstance(obstacles, list | tuple) or not all(
             isinstance(o, Cylinder | Box | Sphere) for o in obstacles
         ):
@@ -208,6 +257,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         self.frame_skip = check_control_dt(control_dt, float(self.model.opt.timestep))
+        _check_frame(self.model, settings)
         fps = self._control_rate = 1.0 / self.dt
         self.metadata = {
             **self.metadata,
@@ -338,7 +388,19 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         Returns:
             The observation and an info dict with the keys of :meth:`step`'s
             (``is_success`` False, no collision, target ACCEPTED).
+
+        Raises:
+            InvalidInputError: ``seed`` is not None or a non-negative integer, or
+                ``options`` not None or a dict.
         """
+        if seed is not None:
+            if isinstance(seed, bool | np.bool_) or not isinstance(seed, int | np.integer):
+                raise InvalidInputError(f"seed must be None or an integer >= 0, got {seed!r}")
+            seed = int(seed)
+            if seed < 0:
+                raise InvalidInputError(f"seed must be None or an integer >= 0, got {seed}")
+        if options is not None and not isinstance(options, dict):
+            raise InvalidInputError(f"options must be None or a dict, got {options!r}")
         super().reset(seed=seed)
         m, d = self.model, self.data
         mujoco.mj_resetData(m, d)  # qvel, act, warm start, time, contacts, warnings
@@ -413,13 +475,15 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
             and ``target_held``.
 
         Raises:
-            InvalidInputError: Wrong action shape. NonFiniteInputError: NaN or infinity.
+            InvalidInputError: The action is not real numbers (strings, None,
+                booleans, complex numbers, object arrays...) or has the wrong shape.
+            NonFiniteInputError: The action holds NaN or infinity.
         """
-        a = np.asarray(action, dtype=np.float64)
+        a = as_real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
         values = a.tolist()
-        if not math.isfinite(sum(values)):
+        if not all(map(math.isfinite, values)):
             raise NonFiniteInputError(f"action must be finite, got {values}")
         values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
         ctrl = self.data.ctrl
@@ -521,6 +585,23 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
     def close(self) -> None:
         """Free the renderer and close the viewer window, if any."""
         self._renderer.close()
+
+
+def _check_frame(model: mujoco.MjModel, settings: RenderSettings) -> None:
+    """Refuse a frame larger than the model's off-screen buffer or an unknown camera.
+
+    Checked at construction, so that a bad argument fails where it is given and
+    not at the first ``render()``.
+    """
+    buf_w, buf_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
+    if settings.width > buf_w or settings.height > buf_h:
+        raise InvalidInputError(
+            f"frame {settings.width}x{settings.height} exceeds the model's off-screen buffer "
+            f"{buf_w}x{buf_h} px"
+        )
+    if mujoco.mj_name2id(model, int(mujoco.mjtObj.mjOBJ_CAMERA), settings.camera) < 0:
+        names = ", ".join(model.camera(i).name for i in range(model.ncam))
+        raise InvalidInputError(f"no camera named {settings.camera!r}; cameras: {names}")
 
 
 def _as_index(ids: tuple[int, ...]) -> slice | list[int]:

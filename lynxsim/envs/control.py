@@ -47,7 +47,13 @@ class TargetStatus(enum.IntEnum):
 
 def _check_positive(**values: float) -> None:
     for name, v in values.items():
-        if not (math.isfinite(v) and v > 0.0):
+        if isinstance(v, bool) or not isinstance(v, int | float):
+            raise InvalidInputError(f"{name} must be a positive number, got {v!r}")
+        try:
+            positive = math.isfinite(v) and v > 0.0
+        except OverflowError:  # an int beyond float64
+            positive = False
+        if not positive:
             raise InvalidInputError(f"{name} must be a positive number, got {v!r}")
 
 

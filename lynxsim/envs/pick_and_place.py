@@ -7,9 +7,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs
+from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, _real
 from lynxsim.envs.workspace import PolarRegion
-from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.model import CUBE_BODY
 
 __all__ = ["CUBE_HALF_SIZE_M", "PickAndPlaceEnv"]
@@ -175,9 +174,7 @@ class PickAndPlaceEnv(LynxArmEnv):
     """Range of goal heights above the resting height when in the air [m]."""
 
     def __init__(self, *, goal_in_air_prob: float = 0.5, **kwargs: Any) -> None:
-        if not 0.0 <= goal_in_air_prob <= 1.0:
-            raise InvalidInputError(f"goal_in_air_prob must be in [0, 1], got {goal_in_air_prob}")
-        self.goal_in_air_prob = float(goal_in_air_prob)
+        self.goal_in_air_prob = _real(goal_in_air_prob, "goal_in_air_prob", 0.0, 1.0)
         super().__init__(**kwargs)
         m = self.model
         body = m.body(CUBE_BODY)

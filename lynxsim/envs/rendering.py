@@ -62,6 +62,18 @@ class EnvRenderer:
         self._scene: SceneRenderer | None = None
         self._viewer: Any = None
 
+    def __getstate__(self) -> dict[str, Any]:
+        """State for pickling: without the GL context or window (made again on the next frame).
+
+        A GL context belongs to the process (and thread) that made it and cannot
+        be pickled; copies of an env (``copy.deepcopy``, ``pickle``, a vector env's
+        workers) render with their own, made lazily like the first one.
+        """
+        state = self.__dict__.copy()
+        state["_scene"] = None
+        state["_viewer"] = None
+        return state
+
     @property
     def started(self) -> bool:
         """Whether a GL context or window exists."""

@@ -21,14 +21,24 @@ assembly modes (see the tests and ``benchmarks/bench_rrr_workspace.py``).
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import wrap_angle
+from lynxsim.angles import as_count, wrap_angle
+from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array, platform_joints
+from lynxsim.rrr.geometry import (
+    RRR_ROBOT,
+    RRRGeometry,
+    _platform_joints,
+    as_pose_array,
+    as_theta_array,
+    check_rrr_geometry,
+    platform_joints,
+)
 from lynxsim.rrr.jacobian import det3
 from lynxsim.rrr.modes import mode_index
 
@@ -95,11 +105,26 @@ class FKResult(NamedTuple):
     mode: npt.NDArray[np.int8]
 
 
-def _as_theta(theta: npt.ArrayLike) -> FloatArray:
-    arr = np.asarray(theta, dtype=float)
-    if arr.ndim == 0 or arr.shape[-1] != 3:
-        raise InvalidInputError(f"theta must have shape (..., 3), got {arr.shape}")
-    return arr
+MAX_NEWTON_ITER = 10_000
+"""Largest Newton iteration limit :func:`fk_near` accepts."""
+MAX_HALVINGS = 16
+"""Largest ``max_halvings`` of :func:`fk_path` (2**16 sub-steps of one sample)."""
+
+_as_theta = as_theta_array
+
+
+def _elbows(th: FloatArray, geometry: RRRGeometry) -> FloatArray:
+    """Elbows of checked angles, shape (..., 3, 2) [m]; NaN for non-finite angles."""
+    with np.errstate(invalid="ignore"):  # cos(inf): NaN
+        return geometry.base + geometry.proximal * np.stack([np.cos(th), np.sin(th)], axis=-1)
+
+
+def _batch_size(batch: tuple[int, ...]) -> int:
+    """Number of items of a batch shape, at most MAX_SAMPLES, or InvalidInputError."""
+    n = math.prod(batch)
+    if n > MAX_SAMPLES:
+        raise InvalidInputError(f"batch of {n:,} items (shape {batch}); at most {MAX_SAMPLES:,}")
+    return n
 
 
 def elbow_points(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
@@ -110,10 +135,14 @@ def elbow_points(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> Flo
         geometry: The robot description.
 
     Returns:
-        Shape (..., 3, 2) [m].
+        Shape (..., 3, 2) [m]; NaN for NaN or infinite angles.
+
+    Raises:
+        InvalidInputError: ``theta`` is not real numbers of shape (..., 3), or
+            ``geometry`` not an :class:`~lynxsim.rrr.geometry.RRRGeometry`.
     """
     th = _as_theta(theta)
-    return geometry.base + geometry.proximal * np.stack([np.cos(th), np.sin(th)], axis=-1)
+    return _elbows(th, check_rrr_geometry(geometry))
 
 
 def loop_residual(
@@ -127,17 +156,31 @@ def loop_residual(
         geometry: The robot description.
 
     Returns:
-        Shape (..., 3) [m]; zero where the pose and the angles fit together.
+        Shape (..., 3) [m]; zero where the pose and the angles fit together;
+        NaN where an input is NaN or infinite.
+
+    Raises:
+        InvalidInputError: Bad shapes, types or geometry (as :func:`elbow_points`
+            and :func:`~lynxsim.rrr.geometry.as_pose_array`), or shapes that do
+            not broadcast.
     """
-    n = platform_joints(pose, geometry) - elbow_points(theta, geometry)
-    out: FloatArray = np.hypot(n[..., 0], n[..., 1]) - geometry.distal
+    geometry = check_rrr_geometry(geometry)
+    p = as_pose_array(pose)
+    th = _as_theta(theta)
+    try:
+        _batch_size(np.broadcast_shapes(p.shape[:-1], th.shape[:-1]))
+    except ValueError as exc:
+        raise InvalidInputError(f"pose and theta do not broadcast: {exc}") from None
+    with np.errstate(invalid="ignore"):  # inf - inf: NaN
+        n = platform_joints(p, geometry) - _elbows(th, geometry)
+        out: FloatArray = np.hypot(n[..., 0], n[..., 1]) - geometry.distal
     return out
 
 
 def _modes(pose: FloatArray, elbows: FloatArray, geometry: RRRGeometry) -> npt.NDArray[np.int8]:
     """Working modes from the sign of each elbow's bend; -1 for NaN poses."""
     a = elbows - geometry.base
-    n = platform_joints(pose, geometry) - elbows
+    n = _platform_joints(pose, geometry) - elbows
     bend = a[..., 0] * n[..., 1] - a[..., 1] * n[..., 0]
     signs = np.where(bend < 0.0, -1, 1)
     out = mode_index(signs).astype(np.int8)
@@ -162,8 +205,12 @@ def _newton(
     ell = geometry.distal
     r_p = geometry.platform_radius
     x = pose0.copy()
+    # A start beyond MAX_COORDINATE_M (a huge polynomial root) is no pose of a robot
+    # under 1 m across; skipping it keeps the squares below from overflowing.
     startable: npt.NDArray[np.bool_] = np.asarray(
-        np.isfinite(x).all(axis=-1) & np.isfinite(elbows).all(axis=(-1, -2))
+        np.isfinite(x).all(axis=-1)
+        & (np.abs(x[:, :2]) <= MAX_COORDINATE_M).all(axis=-1)
+        & np.isfinite(elbows).all(axis=(-1, -2))
     )
     active = startable.copy()
     x[~active] = 0.0
@@ -172,7 +219,7 @@ def _newton(
         if idx.size == 0:
             break
         xa = x[idx]
-        joints = platform_joints(xa, geometry)
+        joints = _platform_joints(xa, geometry)
         n = joints - elbows[idx]
         r = joints - xa[:, None, :2]
         f = 0.5 * (n[..., 0] ** 2 + n[..., 1] ** 2 - ell**2)  # (k, 3) [m²]
@@ -192,7 +239,7 @@ def _newton(
         done = np.abs(f).max(axis=-1) < 1e-3 * CLOSURE_TOL * ell
         active[idx[done | ~ok]] = False
     x[:, 2] = wrap_angle(x[:, 2])
-    n = platform_joints(x, geometry) - elbows
+    n = _platform_joints(x, geometry) - elbows
     residual = np.abs(np.hypot(n[..., 0], n[..., 1]) - ell)
     converged = (
         startable & np.isfinite(residual).all(axis=-1) & (residual.max(axis=-1) <= CLOSURE_TOL)
@@ -221,13 +268,23 @@ def fk_near(
         max_iter: Newton iteration limit (steps are limited to 20 mm).
 
     Returns:
-        The :class:`FKResult`.
+        The :class:`FKResult` (not converged where an input is NaN or infinite).
+
+    Raises:
+        InvalidInputError: Bad shapes, types or geometry, shapes that do not
+            broadcast, or ``max_iter`` not an integer from 1 to
+            :data:`MAX_NEWTON_ITER`.
     """
+    geometry = check_rrr_geometry(geometry)
     th = _as_theta(theta)
     g = as_pose_array(guess, "guess")
-    batch = np.broadcast_shapes(th.shape[:-1], g.shape[:-1])
-    n = int(np.prod(batch, dtype=int))
-    elbows = elbow_points(np.broadcast_to(th, batch + (3,)).reshape(n, 3), geometry)
+    max_iter = as_count(max_iter, "max_iter", 1, MAX_NEWTON_ITER)
+    try:
+        batch = np.broadcast_shapes(th.shape[:-1], g.shape[:-1])
+    except ValueError as exc:
+        raise InvalidInputError(f"theta and guess do not broadcast: {exc}") from None
+    n = _batch_size(batch)
+    elbows = _elbows(np.broadcast_to(th, batch + (3,)).reshape(n, 3), geometry)
     pose, converged = _newton(
         elbows, np.broadcast_to(g, batch + (3,)).reshape(n, 3).copy(), geometry, max_iter
     )
@@ -259,22 +316,38 @@ def fk_path(
         max_halvings: How often a failed step may be halved.
 
     Returns:
-        The :class:`FKResult`, batch shape (T,).
+        The :class:`FKResult`, batch shape (T,); not converged from the first
+        sample with a NaN or infinite angle on.
+
+    Raises:
+        InvalidInputError: ``theta_path`` is not real numbers of shape (T, 3)
+            with 1 <= T <= :data:`~lynxsim.bounds.MAX_SAMPLES`, ``start`` not a
+            pose (3,), ``max_halvings`` not an integer from 0 to
+            :data:`MAX_HALVINGS`, or a bad ``geometry``.
     """
-    th = _as_theta(theta_path)
-    if th.ndim != 2:
-        raise InvalidInputError(f"theta_path must have shape (T, 3), got {th.shape}")
+    geometry = check_rrr_geometry(geometry)
+    th = _as_theta(theta_path, "theta_path")
+    if th.ndim != 2 or not 1 <= len(th) <= MAX_SAMPLES:
+        raise InvalidInputError(
+            f"theta_path must have shape (T, 3) with 1 <= T <= {MAX_SAMPLES:,}, got {th.shape}"
+        )
+    start_pose = as_pose_array(start, "start")
+    if start_pose.shape != (3,):
+        raise InvalidInputError(f"start must have shape (3,), got {start_pose.shape}")
+    max_halvings = as_count(max_halvings, "max_halvings", 0, MAX_HALVINGS)
     pose = np.full(th.shape, np.nan)
     converged = np.zeros(len(th), dtype=bool)
-    current = as_pose_array(start, "start").reshape(1, 3)
+    current = start_pose.reshape(1, 3)
     previous = th[0]
-    for t in range(len(th)):
+    finite_rows = np.isfinite(th).all(axis=-1)
+    stop = len(th) if finite_rows.all() else int(np.argmin(finite_rows))
+    for t in range(stop):
         for halvings in range(max_halvings + 1):
             parts = 2**halvings
             trial = current
             for k in range(1, parts + 1):
                 target = previous + (th[t] - previous) * (k / parts)
-                trial, ok = _newton(elbow_points(target[None], geometry), trial, geometry, 50)
+                trial, ok = _newton(_elbows(target[None], geometry), trial, geometry, 50)
                 if not ok[0]:
                     break
             if ok[0]:
@@ -284,7 +357,7 @@ def fk_path(
         current, previous = trial, th[t]
         pose[t], converged[t] = current[0], True
     mode = np.full(len(th), -1, dtype=np.int8)
-    mode[converged] = _modes(pose[converged], elbow_points(th[converged], geometry), geometry)
+    mode[converged] = _modes(pose[converged], _elbows(th[converged], geometry), geometry)
     return FKResult(pose=pose, converged=converged, mode=mode)
 
 
@@ -417,14 +490,16 @@ def fk_all(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FKSolutio
         none for non-finite angles or angles no pose fits).
 
     Raises:
-        InvalidInputError: If ``theta`` does not have shape (..., 3).
+        InvalidInputError: ``theta`` is not real numbers of shape (..., 3), the
+            batch exceeds :data:`~lynxsim.bounds.MAX_SAMPLES`, or a bad ``geometry``.
     """
+    geometry = check_rrr_geometry(geometry)
     th = _as_theta(theta)
     batch = th.shape[:-1]
-    n = int(np.prod(batch, dtype=int))
+    n = _batch_size(batch)
     th = th.reshape(n, 3)
     finite = np.flatnonzero(np.isfinite(th).all(axis=-1))
-    elbows = elbow_points(th[finite], geometry)
+    elbows = _elbows(th[finite], geometry)
     item, seed = _candidates(elbows, geometry)
     sol, ok = _newton(elbows[item], seed, geometry, max_iter=60)
     item, sol = finite[item[ok]], sol[ok]
@@ -457,7 +532,7 @@ def fk_all(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FKSolutio
         fits = rank < MAX_ASSEMBLY_MODES
         pose[item[fits], rank[fits]] = sol[fits]
         mode[item[fits], rank[fits]] = _modes(
-            sol[fits], elbow_points(th[item[fits]], geometry), geometry
+            sol[fits], _elbows(th[item[fits]], geometry), geometry
         )
         count[uniq] = np.minimum(counts, MAX_ASSEMBLY_MODES)
     return FKSolutions(

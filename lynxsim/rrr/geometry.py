@@ -24,19 +24,48 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import as_real_array
+from lynxsim.bounds import MAX_COORDINATE_M
 from lynxsim.errors import InvalidInputError
 
-__all__ = ["RRR_ROBOT", "RRRGeometry", "as_pose_array", "platform_joints", "rotation"]
+__all__ = [
+    "RRR_ROBOT",
+    "RRRGeometry",
+    "as_pose_array",
+    "as_theta_array",
+    "check_coordinates",
+    "check_rrr_geometry",
+    "platform_joints",
+    "rotation",
+]
 
 FloatArray = npt.NDArray[np.float64]
 
 _MM = 1e-3
 
 
-def _point(p: tuple[float, ...], what: str) -> tuple[float, float]:
-    if len(p) != 2 or not all(math.isfinite(v) for v in p):
+def _real(value: object, what: str) -> float:
+    """``value`` as a float if it is a finite real number within ±MAX_COORDINATE_M, else raise."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise InvalidInputError(f"{what} must be a real number, got {value!r}")
+    try:
+        v = float(value)
+    except OverflowError:  # an int beyond float64
+        v = math.inf
+    if not (math.isfinite(v) and abs(v) <= MAX_COORDINATE_M):
+        raise InvalidInputError(
+            f"{what} must be finite and within ±{MAX_COORDINATE_M:g} m, got {value!r}"
+        )
+    return v
+
+
+def _point(p: object, what: str) -> tuple[float, float]:
+    if not (isinstance(p, tuple | list | np.ndarray) and len(p) == 2):
         raise InvalidInputError(f"{what} must be a finite (x, y) pair, got {p!r}")
-    return (float(p[0]), float(p[1]))
+    try:
+        return (_real(p[0], what), _real(p[1], what))
+    except InvalidInputError:
+        raise InvalidInputError(f"{what} must be a finite (x, y) pair, got {p!r}") from None
 
 
 @dataclass(frozen=True)
@@ -66,16 +95,24 @@ class RRRGeometry:
     def __post_init__(self) -> None:
         for name in ("base_joints", "platform_offsets"):
             points = getattr(self, name)
-            if len(points) != 3:
-                raise InvalidInputError(f"{name} must hold 3 points, got {len(points)}")
+            if not isinstance(points, tuple | list) or len(points) != 3:
+                raise InvalidInputError(f"{name} must hold 3 points (x, y), got {points!r}")
             object.__setattr__(
                 self, name, tuple(_point(p, f"{name}[{i}]") for i, p in enumerate(points))
             )
         object.__setattr__(self, "base_centre", _point(self.base_centre, "base_centre"))
         for name in ("proximal", "distal"):
             value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0.0):
-                raise InvalidInputError(f"{name} link length must be positive, got {value!r} m")
+            try:
+                length = _real(value, name)
+            except InvalidInputError:
+                length = math.nan
+            if not length > 0.0:
+                raise InvalidInputError(
+                    f"{name} link length must be positive, at most {MAX_COORDINATE_M:g} m, "
+                    f"got {value!r} m"
+                )
+            object.__setattr__(self, name, length)
 
     @classmethod
     def symmetric(
@@ -107,9 +144,19 @@ class RRRGeometry:
             The geometry.
         """
         for name, value in (("base_radius", base_radius), ("platform_radius", platform_radius)):
-            if not (math.isfinite(value) and value > 0.0):
-                raise InvalidInputError(f"{name} must be positive, got {value!r} m")
-        cx, cy = base_centre
+            try:
+                radius = _real(value, name)
+            except InvalidInputError:
+                radius = math.nan
+            if not radius > 0.0:
+                raise InvalidInputError(
+                    f"{name} must be positive, at most {MAX_COORDINATE_M:g} m, got {value!r} m"
+                )
+        base_radius, platform_radius = float(base_radius), float(platform_radius)
+        cx, cy = _point(base_centre, "base_centre")
+        if not (isinstance(directions, tuple | list) and len(directions) == 3):
+            raise InvalidInputError(f"directions must be 3 angles [rad], got {directions!r}")
+        directions = tuple(_real(d, "direction") for d in directions)  # type: ignore[assignment]
         return cls(
             base_joints=tuple(
                 (cx + base_radius * math.cos(d), cy + base_radius * math.sin(d)) for d in directions
@@ -166,22 +213,66 @@ RRR_ROBOT = RRRGeometry(
 C_b = (251.15, 145) mm, s_a = 170 mm, L = 130 mm, r_p = 130 mm."""
 
 
+def check_rrr_geometry(geometry: object) -> RRRGeometry:
+    """``geometry`` if it is an :class:`RRRGeometry`, else raise InvalidInputError."""
+    if geometry is RRR_ROBOT or isinstance(geometry, RRRGeometry):
+        return geometry
+    raise InvalidInputError(f"geometry must be an RRRGeometry, got {geometry!r}")
+
+
 def as_pose_array(pose: npt.ArrayLike, what: str = "pose") -> FloatArray:
     """Return ``pose`` as a float array of shape (..., 3) or raise.
 
+    NaN and infinity pass (the kinematics report them per pose); finite x and y
+    must lie within :data:`~lynxsim.bounds.MAX_COORDINATE_M`.
+
     Raises:
-        InvalidInputError: If the last axis does not have length 3.
+        InvalidInputError: Not real numbers, the last axis does not have length
+            3, or a finite x or y beyond the bound.
     """
-    arr = np.asarray(pose, dtype=float)
+    arr = as_real_array(pose, what)
     if arr.ndim == 0 or arr.shape[-1] != 3:
         raise InvalidInputError(f"{what} must have shape (..., 3) = (x, y, alpha), got {arr.shape}")
+    check_coordinates(arr[..., :2], f"{what} x, y")
     return arr
 
 
+def as_theta_array(theta: npt.ArrayLike, what: str = "theta") -> FloatArray:
+    """Return actuated angles as a float array of shape (..., 3) [rad] or raise.
+
+    NaN and infinity pass (the kinematics report them per triple).
+
+    Raises:
+        InvalidInputError: Not real numbers, or the last axis does not have length 3.
+    """
+    arr = as_real_array(theta, what)
+    if arr.ndim == 0 or arr.shape[-1] != 3:
+        raise InvalidInputError(f"{what} must have shape (..., 3), got {arr.shape}")
+    return arr
+
+
+def check_coordinates(xy: FloatArray, what: str) -> None:
+    """Raise InvalidInputError if a finite coordinate exceeds ±MAX_COORDINATE_M [m]."""
+    far = np.abs(xy) > MAX_COORDINATE_M  # NaN compares False
+    if far.any() and np.isfinite(xy[far]).any():
+        worst = xy[far & np.isfinite(xy)]
+        raise InvalidInputError(
+            f"{what} must be within ±{MAX_COORDINATE_M:g} m (the robot spans under 1 m), "
+            f"got {float(worst[0]):g} m"
+        )
+
+
 def rotation(alpha: npt.ArrayLike) -> FloatArray:
-    """Planar rotation matrices ``R(alpha)``, shape alpha.shape + (2, 2) (alpha [rad])."""
-    a = np.asarray(alpha, dtype=float)
-    c, s = np.cos(a), np.sin(a)
+    """Planar rotation matrices ``R(alpha)``, shape alpha.shape + (2, 2) (alpha [rad]).
+
+    NaN or infinite angles give NaN matrices.
+
+    Raises:
+        InvalidInputError: ``alpha`` is not real numbers.
+    """
+    a = as_real_array(alpha, "alpha")
+    with np.errstate(invalid="ignore"):  # cos(inf): NaN
+        c, s = np.cos(a), np.sin(a)
     return np.stack([np.stack([c, -s], axis=-1), np.stack([s, c], axis=-1)], axis=-2)
 
 
@@ -193,9 +284,21 @@ def platform_joints(pose: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> F
         geometry: The robot description.
 
     Returns:
-        Shape (..., 3, 2) [m], legs in order.
+        Shape (..., 3, 2) [m], legs in order; NaN for a pose with NaN or infinity.
+
+    Raises:
+        InvalidInputError: As :func:`as_pose_array`, or a bad ``geometry``.
     """
     p = as_pose_array(pose)
+    geometry = check_rrr_geometry(geometry)
+    with np.errstate(invalid="ignore"):  # cos(inf), inf - inf: NaN
+        out = _platform_joints(p, geometry)
+    out[~np.isfinite(p).all(axis=-1)] = np.nan  # not +-inf from an infinite x or y
+    return out
+
+
+def _platform_joints(p: FloatArray, geometry: RRRGeometry) -> FloatArray:
+    """:func:`platform_joints` of a checked pose array."""
     c, s = np.cos(p[..., 2])[..., None], np.sin(p[..., 2])[..., None]
     off = geometry.platform
     out = np.empty(p.shape[:-1] + (3, 2))

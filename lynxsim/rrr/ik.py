@@ -25,12 +25,20 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import wrap_angle
+from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import (
     InvalidInputError,
     NonFiniteInputError,
     UnreachablePlatformPoseError,
 )
-from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array, platform_joints
+from lynxsim.rrr.geometry import (
+    RRR_ROBOT,
+    RRRGeometry,
+    _platform_joints,
+    as_pose_array,
+    check_rrr_geometry,
+    platform_joints,
+)
 from lynxsim.rrr.modes import MODE_SIGNS, N_MODES, _check_index
 
 __all__ = [
@@ -210,14 +218,22 @@ def ik(pose: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> RRRIKResult:
         The :class:`RRRIKResult`; ``theta[..., m, :]`` are the actuated angles of
         working mode ``m``.
 
+    Non-finite poses are not an error: their status is ``NOT_FINITE``.
+
     Raises:
-        InvalidInputError: If ``pose`` does not have shape (..., 3).
+        InvalidInputError: ``pose`` is not real numbers of shape (..., 3), a
+            finite x or y exceeds :data:`~lynxsim.bounds.MAX_COORDINATE_M`, the
+            batch exceeds :data:`~lynxsim.bounds.MAX_SAMPLES` poses, or
+            ``geometry`` is not an :class:`~lynxsim.rrr.geometry.RRRGeometry`.
     """
+    geometry = check_rrr_geometry(geometry)
     p = as_pose_array(pose)
     batch = p.shape[:-1]
+    if p.size > 3 * MAX_SAMPLES:
+        raise InvalidInputError(f"at most {MAX_SAMPLES:,} poses per call, got shape {p.shape}")
     finite: BoolArray = np.asarray(np.isfinite(p).all(axis=-1))
     safe = np.where(finite[..., None], p, 0.0)
-    rho, too_far, too_near, branches = _leg_branches(platform_joints(safe, geometry), geometry)
+    rho, too_far, too_near, branches = _leg_branches(_platform_joints(safe, geometry), geometry)
     theta = branches[..., _LEG, _BRANCH]  # (..., 8, 3)
 
     leg_status = np.full(batch + (3,), LegStatus.OK, dtype=np.int8)
@@ -253,7 +269,7 @@ def ik_one(pose: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FloatArray
         Actuated angles of every working mode, shape (8, 3) [rad].
 
     Raises:
-        InvalidInputError: ``pose`` is not a 3-vector.
+        InvalidInputError: ``pose`` is not a 3-vector of real numbers (as :func:`ik`).
         NonFiniteInputError: A coordinate is NaN or infinite.
         UnreachablePlatformPoseError: A leg cannot reach (``legs`` names which).
     """
@@ -282,11 +298,17 @@ def leg_points(
         ``mode``'s shape. Elbows are NaN where the pose is unreachable.
 
     Raises:
-        InvalidInputError: On a bad pose shape or mode index.
+        InvalidInputError: On a bad pose, mode index or geometry (as :func:`ik`),
+            or shapes that do not broadcast.
     """
     m = _check_index(mode)
     result = ik(pose, geometry)
-    batch = np.broadcast_shapes(result.status.shape, m.shape)
+    try:
+        batch = np.broadcast_shapes(result.status.shape, m.shape)
+    except ValueError as exc:
+        raise InvalidInputError(f"pose and mode do not broadcast: {exc}") from None
+    if math.prod(batch) > MAX_SAMPLES:
+        raise InvalidInputError(f"at most {MAX_SAMPLES:,} poses per call, got batch {batch}")
     theta = np.take_along_axis(
         np.broadcast_to(result.theta, batch + (N_MODES, 3)),
         np.broadcast_to(m, batch)[..., None, None],

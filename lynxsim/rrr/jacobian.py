@@ -20,13 +20,22 @@ motion with the actuators locked.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array, platform_joints
+from lynxsim.rrr.geometry import (
+    RRR_ROBOT,
+    RRRGeometry,
+    _platform_joints,
+    as_pose_array,
+    as_theta_array,
+    check_rrr_geometry,
+)
 
 __all__ = [
     "PlatformJacobians",
@@ -75,11 +84,7 @@ class SingularityMeasures(NamedTuple):
     parallel_icn: FloatArray
 
 
-def _as_theta(theta: npt.ArrayLike) -> FloatArray:
-    arr = np.asarray(theta, dtype=float)
-    if arr.ndim == 0 or arr.shape[-1] != 3:
-        raise InvalidInputError(f"theta must have shape (..., 3), got {arr.shape}")
-    return arr
+_as_theta = as_theta_array
 
 
 def _cross(u: FloatArray, v: FloatArray) -> FloatArray:
@@ -100,16 +105,30 @@ def det3(m: FloatArray) -> FloatArray:
 def _vectors(
     pose: npt.ArrayLike, theta: npt.ArrayLike, geometry: RRRGeometry
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Proximal links ``a_i``, distal links ``n_i``, platform arms ``r_i``, each (..., 3, 2)."""
+    """Proximal links ``a_i``, distal links ``n_i``, platform arms ``r_i``, each (..., 3, 2).
+
+    Checks the arguments (shapes, types, broadcasting, batch size, geometry);
+    call under ``np.errstate(invalid="ignore")``: a NaN or infinite input gives NaN.
+    """
+    geometry = check_rrr_geometry(geometry)
     p = as_pose_array(pose)
     th = _as_theta(theta)
-    batch = np.broadcast_shapes(p.shape[:-1], th.shape[:-1])
+    try:
+        batch = np.broadcast_shapes(p.shape[:-1], th.shape[:-1])
+    except ValueError as exc:
+        raise InvalidInputError(f"pose and theta do not broadcast: {exc}") from None
+    if math.prod(batch) > MAX_SAMPLES:
+        raise InvalidInputError(f"at most {MAX_SAMPLES:,} configurations, got batch {batch}")
     p = np.broadcast_to(p, batch + (3,))
     th = np.broadcast_to(th, batch + (3,))
-    joints = platform_joints(p, geometry)
+    joints = _platform_joints(p, geometry)
     a = geometry.proximal * np.stack([np.cos(th), np.sin(th)], axis=-1)
     n = joints - geometry.base - a
     r = joints - p[..., None, :2]
+    bad = ~(np.isfinite(p).all(axis=-1) & np.isfinite(th).all(axis=-1))
+    if bad.any():  # NaN, never +-inf, for a configuration with a NaN or infinite input
+        a, n, r = a.copy(), n.copy(), r.copy()
+        a[bad], n[bad], r[bad] = np.nan, np.nan, np.nan
     return a, n, r
 
 
@@ -127,10 +146,17 @@ def constraint_jacobians(
 
     Returns:
         The :class:`PlatformJacobians`.
+
+    Raises:
+        InvalidInputError: ``pose`` or ``theta`` is not real numbers of shape
+            (..., 3) (a finite x or y beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`),
+            their batch shapes do not broadcast or exceed
+            :data:`~lynxsim.bounds.MAX_SAMPLES`, or a bad ``geometry``.
     """
-    a, n, r = _vectors(pose, theta, geometry)
+    with np.errstate(invalid="ignore"):
+        a, n, r = _vectors(pose, theta, geometry)
+        b = _cross(a, n)
     mat_a = np.stack([n[..., 0], n[..., 1], _cross(r, n)], axis=-1)
-    b = _cross(a, n)
     mat_b = np.zeros(b.shape + (3,))
     idx = np.arange(3)
     mat_b[..., idx, idx] = b
@@ -149,9 +175,21 @@ def forward_jacobian(
 
     Returns:
         ``A⁻¹ B``, shape (..., 3, 3): rows x, y [m/rad] and alpha [rad/rad];
-        NaN where ``A`` is exactly singular.
+        NaN where ``A`` is exactly singular or an input is NaN or infinite.
+
+    Raises:
+        InvalidInputError: ``pose`` or ``theta`` is not real numbers of shape
+            (..., 3) (a finite x or y beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`),
+            their batch shapes do not broadcast or exceed
+            :data:`~lynxsim.bounds.MAX_SAMPLES`, or a bad ``geometry``.
     """
     jac = constraint_jacobians(pose, theta, geometry)
+    with np.errstate(invalid="ignore"):
+        return _forward(jac)
+
+
+def _forward(jac: PlatformJacobians) -> FloatArray:
+    """``A⁻¹ B`` by the adjugate, NaN where ``A`` is singular or not finite."""
     det = det3(jac.a)
     # Adjugate (transposed cofactors) of A, divided by det(A).
     a = jac.a
@@ -186,8 +224,20 @@ def inverse_jacobian(
     Returns:
         ``B⁻¹ A``, shape (..., 3, 3): columns x, y [rad/m] and alpha [rad/rad];
         row ``i`` is NaN where leg ``i`` is exactly stretched or folded.
+
+    Raises:
+        InvalidInputError: ``pose`` or ``theta`` is not real numbers of shape
+            (..., 3) (a finite x or y beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`),
+            their batch shapes do not broadcast or exceed
+            :data:`~lynxsim.bounds.MAX_SAMPLES`, or a bad ``geometry``.
     """
     jac = constraint_jacobians(pose, theta, geometry)
+    with np.errstate(invalid="ignore"):
+        return _inverse(jac)
+
+
+def _inverse(jac: PlatformJacobians) -> FloatArray:
+    """``B⁻¹ A``, NaN rows where ``B``'s entry is zero or not finite."""
     b = np.diagonal(jac.b, axis1=-2, axis2=-1)
     safe = np.where(b == 0.0, 1.0, b)
     out: FloatArray = jac.a / safe[..., None]
@@ -207,17 +257,26 @@ def singularity_measures(
 
     Returns:
         The :class:`SingularityMeasures`.
+
+    Raises:
+        InvalidInputError: ``pose`` or ``theta`` is not real numbers of shape
+            (..., 3) (a finite x or y beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`),
+            their batch shapes do not broadcast or exceed
+            :data:`~lynxsim.bounds.MAX_SAMPLES`, or a bad ``geometry``.
     """
-    a, n, r = _vectors(pose, theta, geometry)
-    s_a, ell, r_p = geometry.proximal, geometry.distal, geometry.platform_radius
-    leg = _cross(a, n) / (s_a * ell)
-    a_hat = np.stack([n[..., 0] / ell, n[..., 1] / ell, _cross(r, n) / (ell * r_p)], axis=-1)
+    with np.errstate(invalid="ignore"):
+        a, n, r = _vectors(pose, theta, geometry)
+        s_a, ell, r_p = geometry.proximal, geometry.distal, geometry.platform_radius
+        leg = _cross(a, n) / (s_a * ell)
+        a_hat = np.stack([n[..., 0] / ell, n[..., 1] / ell, _cross(r, n) / (ell * r_p)], axis=-1)
     finite: npt.NDArray[np.bool_] = np.asarray(np.isfinite(a_hat).all(axis=(-1, -2)))
     safe: FloatArray = np.where(finite[..., None, None], a_hat, np.eye(3))
     sv = np.asarray(np.linalg.svd(safe, compute_uv=False), dtype=np.float64)
+    with np.errstate(invalid="ignore"):  # 0 / 0 when every distal link has zero length
+        icn = np.where(finite & (sv[..., 0] > 0.0), sv[..., 2] / sv[..., 0], np.nan)
     return SingularityMeasures(
         leg=leg,
         serial=np.abs(leg).min(axis=-1),
         parallel=det3(a_hat),
-        parallel_icn=np.where(finite, sv[..., 2] / sv[..., 0], np.nan),
+        parallel_icn=icn,
     )

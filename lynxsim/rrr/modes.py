@@ -31,6 +31,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
 
 __all__ = ["MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
@@ -46,10 +47,32 @@ MODE_SIGNS.setflags(write=False)
 
 
 def _check_index(mode: npt.ArrayLike) -> npt.NDArray[np.intp]:
-    m = np.asarray(mode)
-    if not np.issubdtype(m.dtype, np.integer) or ((m < 0) | (m >= N_MODES)).any():
-        raise InvalidInputError(f"working mode must be an integer in 0..7, got {mode!r}")
+    """``mode`` as an intp array of indices in 0..7, or InvalidInputError."""
+    try:
+        m = np.asarray(mode)
+    except (TypeError, ValueError, OverflowError):
+        m = np.asarray(None)
+    if (
+        not np.issubdtype(m.dtype, np.integer)
+        or m.size > _MAX_INDICES
+        or ((m < 0) | (m >= N_MODES)).any()
+    ):
+        raise InvalidInputError(
+            f"working mode must be an integer in 0..7 (or an integer array), got {_short(mode)}"
+        )
     return m.astype(np.intp)
+
+
+_MAX_INDICES = MAX_SAMPLES
+"""Most mode indices of one call."""
+
+
+def _short(value: object) -> str:
+    try:
+        text = repr(value)
+    except ValueError:  # an integer of more than 4300 digits
+        return f"a {type(value).__name__} too long to print"
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def mode_signs(mode: npt.ArrayLike) -> npt.NDArray[np.int8]:
@@ -79,9 +102,18 @@ def mode_index(signs: npt.ArrayLike | Sequence[int]) -> npt.NDArray[np.intp]:
     Raises:
         InvalidInputError: If the last axis is not 3 or an entry is not ±1.
     """
-    s = np.asarray(signs)
-    if s.ndim == 0 or s.shape[-1] != 3 or not np.isin(s, (-1, 1)).all():
-        raise InvalidInputError(f"elbow signs must be ±1 with shape (..., 3), got {signs!r}")
+    try:
+        s = np.asarray(signs)
+    except (TypeError, ValueError, OverflowError):
+        s = np.asarray(None)
+    if (
+        s.dtype.kind not in "iuf"
+        or s.ndim == 0
+        or s.shape[-1] != 3
+        or s.size > 3 * _MAX_INDICES
+        or not np.isin(s, (-1, 1)).all()
+    ):
+        raise InvalidInputError(f"elbow signs must be ±1 with shape (..., 3), got {_short(signs)}")
     bits = (s < 0).astype(np.intp)
     out: npt.NDArray[np.intp] = bits[..., 0] + 2 * bits[..., 1] + 4 * bits[..., 2]
     return out
@@ -91,6 +123,8 @@ def mode_label(mode: int) -> str:
     """Short text for a working mode, e.g. ``"+-+"`` for mode 2.
 
     Raises:
-        InvalidInputError: If ``mode`` is not an integer in 0..7.
+        InvalidInputError: If ``mode`` is not one integer in 0..7.
     """
+    if np.ndim(_check_index(mode)) != 0:
+        raise InvalidInputError(f"mode_label takes one working mode, got {_short(mode)}")
     return "".join("+" if s > 0 else "-" for s in mode_signs(mode))

@@ -17,9 +17,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import wrap_angle
-from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry
+from lynxsim.angles import as_real_array, as_real_number, wrap_angle
+from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES, check_range
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, check_coordinates, check_rrr_geometry
 from lynxsim.rrr.ik import ik
 from lynxsim.rrr.jacobian import singularity_measures
 from lynxsim.rrr.modes import _check_index
@@ -32,6 +33,27 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
+
+MIN_STEP_RAD = 1e-5
+"""Finest sampling step of :func:`orientation_range_in_mode` [rad] (~6e5 samples a side)."""
+
+
+def _finite_number(value: object, name: str, unit: str = "rad") -> float:
+    """``value`` as one finite float, or InvalidInputError / NonFiniteInputError."""
+    v = as_real_number(value, name)
+    if not math.isfinite(v):
+        raise NonFiniteInputError(f"{name} must be finite, got {v!r} {unit}")
+    return v
+
+
+def _centre(x: object, y: object) -> tuple[float, float]:
+    """A platform centre (x, y) [m]: finite numbers within ±MAX_COORDINATE_M."""
+    cx, cy = _finite_number(x, "x", "m"), _finite_number(y, "y", "m")
+    if not (abs(cx) <= MAX_COORDINATE_M and abs(cy) <= MAX_COORDINATE_M):
+        raise InvalidInputError(
+            f"platform centre must be within ±{MAX_COORDINATE_M:g} m, got ({cx:g}, {cy:g}) m"
+        )
+    return cx, cy
 
 
 class OrientationRange(NamedTuple):
@@ -120,11 +142,21 @@ def orientation_range(
         The :class:`OrientationRange`.
 
     Raises:
-        InvalidInputError: If ``xy`` does not have shape (..., 2).
+        InvalidInputError: ``xy`` is not real numbers of shape (..., 2) (a
+            finite coordinate beyond :data:`~lynxsim.bounds.MAX_COORDINATE_M`,
+            more than :data:`~lynxsim.bounds.MAX_SAMPLES` centres), ``alpha_ref``
+            not a number, or a bad ``geometry``.
+        NonFiniteInputError: ``alpha_ref`` is NaN or infinite (a NaN centre
+            gives a NaN range).
     """
-    p = np.asarray(xy, dtype=float)
+    geometry = check_rrr_geometry(geometry)
+    p = as_real_array(xy, "xy")
     if p.ndim == 0 or p.shape[-1] != 2:
         raise InvalidInputError(f"xy must have shape (..., 2), got {p.shape}")
+    check_coordinates(p, "xy")
+    if p.size > 2 * MAX_SAMPLES:
+        raise InvalidInputError(f"at most {MAX_SAMPLES:,} centres per call, got shape {p.shape}")
+    alpha_ref = _finite_number(alpha_ref, "alpha_ref")
     batch = p.shape[:-1]
     flat = p.reshape(-1, 2)
     n = len(flat)
@@ -165,7 +197,14 @@ def orientation_intervals(
         Arcs ``(start, end)`` [rad], ``start`` in [-pi, pi), ``end > start``
         (an arc may run past pi), longest first; ``[(-pi, pi)]`` for a full
         turn, ``[]`` when no orientation is reachable.
+
+    Raises:
+        InvalidInputError: ``x`` or ``y`` is not a number within
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, or a bad ``geometry``.
+        NonFiniteInputError: ``x`` or ``y`` is NaN or infinite.
     """
+    geometry = check_rrr_geometry(geometry)
+    x, y = _centre(x, y)
     bps, never = _leg_breakpoints(np.array([[x, y]], dtype=float), geometry)
     if never.any():
         return []
@@ -220,8 +259,21 @@ def orientation_range_in_mode(
     Returns:
         ``(lower, upper)`` [rad]; NaN, NaN when ``alpha_ref`` is unreachable or
         singular in this mode.
+
+    Raises:
+        InvalidInputError: ``x`` or ``y`` is not a number within
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, ``mode`` not one integer in
+            0..7, ``step`` not in [:data:`MIN_STEP_RAD`, pi], or a bad ``geometry``.
+        NonFiniteInputError: ``x``, ``y`` or ``alpha_ref`` is NaN or infinite.
     """
-    m = int(_check_index(mode))
+    geometry = check_rrr_geometry(geometry)
+    x, y = _centre(x, y)
+    index = _check_index(mode)
+    if index.ndim != 0:
+        raise InvalidInputError(f"mode must be one integer in 0..7, got shape {index.shape}")
+    m = int(index)
+    alpha_ref = _finite_number(alpha_ref, "alpha_ref")
+    step = check_range(as_real_number(step, "step"), "step", MIN_STEP_RAD, math.pi, "rad")
     rng = orientation_range(np.array([x, y]), alpha_ref, geometry)
     lower, upper = float(rng.lower), float(rng.upper)
     if not math.isfinite(lower):

@@ -24,9 +24,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import wrap_angle
-from lynxsim.errors import InvalidInputError
-from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, rotation
+from lynxsim.angles import as_real_array, as_real_number, wrap_angle
+from lynxsim.bounds import MAX_CELLS, MAX_COORDINATE_M, check_range
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, check_rrr_geometry, rotation
 from lynxsim.rrr.ik import REACH_TOL
 from lynxsim.rrr.modes import MODE_SIGNS, N_MODES, _check_index
 
@@ -44,6 +45,39 @@ FloatArray = npt.NDArray[np.float64]
 
 _CHUNK_POINTS = 65_536
 
+MAX_ORIENTATIONS = 10_000
+"""Most orientations of one :func:`grid_extent` or :func:`workspace_maps` call."""
+
+
+def _angle(value: object, name: str) -> float:
+    """One finite angle [rad], or InvalidInputError / NonFiniteInputError."""
+    v = as_real_number(value, name)
+    if not math.isfinite(v):
+        raise NonFiniteInputError(f"{name} must be finite, got {v!r} rad")
+    return v
+
+
+def _angles(values: object, name: str) -> list[float]:
+    """A non-empty 1-D sequence of finite angles [rad], at most MAX_ORIENTATIONS."""
+    arr = as_real_array(values, name)
+    if arr.ndim != 1 or not 1 <= arr.size <= MAX_ORIENTATIONS:
+        raise InvalidInputError(
+            f"{name} must be 1 to {MAX_ORIENTATIONS:,} orientations [rad] in a 1-D sequence, "
+            f"got shape {arr.shape}"
+        )
+    if not np.isfinite(arr).all():
+        raise NonFiniteInputError(f"{name} must be finite, got {arr.tolist()!r}")
+    out: list[float] = arr.tolist()
+    return out
+
+
+def _one_mode(mode: object) -> int:
+    """One working-mode index 0..7, or InvalidInputError."""
+    index = _check_index(mode)  # type: ignore[arg-type]
+    if index.ndim != 0:
+        raise InvalidInputError(f"mode must be one integer in 0..7, got shape {index.shape}")
+    return int(index)
+
 
 class LegAnnuli(NamedTuple):
     """Where each leg reaches at one orientation: ``r_min <= |C - centre_i| <= r_max``.
@@ -60,8 +94,14 @@ class LegAnnuli(NamedTuple):
 
 
 def leg_annuli(alpha: float, geometry: RRRGeometry = RRR_ROBOT) -> LegAnnuli:
-    """The three leg annuli of the platform centre at orientation ``alpha`` [rad]."""
-    rot = rotation(alpha)
+    """The three leg annuli of the platform centre at orientation ``alpha`` [rad].
+
+    Raises:
+        InvalidInputError: ``alpha`` is not one number, or a bad ``geometry``.
+        NonFiniteInputError: ``alpha`` is NaN or infinite.
+    """
+    geometry = check_rrr_geometry(geometry)
+    rot = rotation(_angle(alpha, "alpha"))
     return LegAnnuli(
         centres=geometry.base - geometry.platform @ rot.T,
         r_min=geometry.reach_min,
@@ -81,7 +121,16 @@ def grid_extent(
 
     Returns:
         ``(x_min, x_max, y_min, y_max)`` [m].
+
+    Raises:
+        InvalidInputError: ``alphas`` is not 1 to :data:`MAX_ORIENTATIONS`
+            numbers, ``margin`` not in [0, :data:`~lynxsim.bounds.MAX_COORDINATE_M`]
+            m, or a bad ``geometry``.
+        NonFiniteInputError: An orientation is NaN or infinite.
     """
+    geometry = check_rrr_geometry(geometry)
+    alphas = _angles(alphas, "alphas")
+    margin = check_range(as_real_number(margin, "margin"), "margin", 0.0, MAX_COORDINATE_M, "m")
     boxes = []
     for a in alphas:
         ann = leg_annuli(a, geometry)
@@ -142,8 +191,14 @@ class WorkspaceMap:
         return float(self.reachable.sum()) * self.cell_area
 
     def singularity_free(self, mode: int, margin: float = 0.05) -> npt.NDArray[np.bool_]:
-        """Reachable centres whose mode-``mode`` measures both exceed ``margin``, (ny, nx)."""
-        m = int(_check_index(mode))
+        """Reachable centres whose mode-``mode`` measures both exceed ``margin``, (ny, nx).
+
+        Raises:
+            InvalidInputError: ``mode`` is not one integer in 0..7, or ``margin``
+                not a number in [0, 10].
+        """
+        m = _one_mode(mode)
+        margin = check_range(as_real_number(margin, "margin"), "margin", 0.0, 10.0)
         with np.errstate(invalid="ignore"):
             out: npt.NDArray[np.bool_] = (np.abs(self.parallel[..., m]) > margin) & (
                 self.serial > margin
@@ -234,16 +289,31 @@ def workspace_map(
         The :class:`WorkspaceMap`.
 
     Raises:
-        InvalidInputError: If ``x`` or ``y`` is not a finite 1-D array or
-            ``alpha`` is not finite.
+        InvalidInputError: ``x`` or ``y`` is not a non-empty 1-D array of finite
+            real numbers within ±:data:`~lynxsim.bounds.MAX_COORDINATE_M`, the
+            grid has more than :data:`~lynxsim.bounds.MAX_CELLS` points (checked
+            before allocating), ``alpha`` is not a finite number, or a bad
+            ``geometry``.
     """
-    xs = np.asarray(x, dtype=float)
-    ys = np.asarray(y, dtype=float)
+    geometry = check_rrr_geometry(geometry)
+    if not isinstance(with_theta, bool | np.bool_):
+        raise InvalidInputError(f"with_theta must be True or False, got {with_theta!r}")
+    xs = as_real_array(x, "x")
+    ys = as_real_array(y, "y")
     for name, arr in (("x", xs), ("y", ys)):
         if arr.ndim != 1 or arr.size == 0 or not np.isfinite(arr).all():
-            raise InvalidInputError(f"{name} must be a non-empty finite 1-D array, got {arr!r}")
-    if not math.isfinite(alpha):
-        raise InvalidInputError(f"alpha must be finite, got {alpha!r}")
+            shown = np.array2string(arr, threshold=6)
+            raise InvalidInputError(f"{name} must be a non-empty finite 1-D array, got {shown}")
+        if np.abs(arr).max() > MAX_COORDINATE_M:
+            raise InvalidInputError(
+                f"{name} must lie within ±{MAX_COORDINATE_M:g} m, got up to {np.abs(arr).max():g} m"
+            )
+    if xs.size * ys.size > MAX_CELLS:
+        raise InvalidInputError(
+            f"a {xs.size:,} x {ys.size:,} grid has {xs.size * ys.size:,} points "
+            f"(at most {MAX_CELLS:,})"
+        )
+    alpha = _angle(alpha, "alpha")
     gx, gy = np.meshgrid(xs, ys)
     centres = np.stack([gx.ravel(), gy.ravel()], axis=-1)
     n = len(centres)
@@ -279,10 +349,16 @@ def parallel_singularity_loci(wmap: WorkspaceMap, mode: int) -> list[FloatArray]
 
     Returns:
         Polylines of platform centres, each shape (k, 2) [m] (possibly empty list).
+
+    Raises:
+        InvalidInputError: ``wmap`` is not a :class:`WorkspaceMap`, or ``mode``
+            not one integer in 0..7.
     """
     import contourpy  # matplotlib's contouring engine; imported only when needed
 
-    m = int(_check_index(mode))
+    if not isinstance(wmap, WorkspaceMap):
+        raise InvalidInputError(f"wmap must be a WorkspaceMap, got {type(wmap).__name__}")
+    m = _one_mode(mode)
     z = np.ma.masked_invalid(wmap.parallel[..., m])
     if z.count() == 0:
         return []
@@ -291,8 +367,9 @@ def parallel_singularity_loci(wmap: WorkspaceMap, mode: int) -> list[FloatArray]
     return [np.asarray(line, dtype=float) for line in lines]
 
 
-MAX_GRID_POINTS = 50_000_000
-"""Largest grid :func:`workspace_maps` accepts (points per orientation)."""
+MAX_GRID_POINTS = MAX_CELLS
+"""Largest grid :func:`workspace_maps` accepts (points per orientation):
+:data:`lynxsim.bounds.MAX_CELLS`."""
 
 
 def workspace_maps(
@@ -314,17 +391,41 @@ def workspace_maps(
         One :class:`WorkspaceMap` per orientation, in order.
 
     Raises:
-        InvalidInputError: A non-finite orientation, a step that is not positive,
-            or a grid larger than :data:`MAX_GRID_POINTS`.
+        InvalidInputError: Not 1 to :data:`MAX_ORIENTATIONS` orientations, an
+            ``extent`` that is not 4 finite numbers within
+            ±:data:`~lynxsim.bounds.MAX_COORDINATE_M` with min <= max, a step
+            that is not a positive number, a grid larger than
+            :data:`MAX_GRID_POINTS` (checked before allocating; the message
+            states the finest step the area allows), or a bad ``geometry``.
+        NonFiniteInputError: An orientation or the step is NaN or infinite.
     """
-    if not (math.isfinite(resolution) and resolution > 0.0):
-        raise InvalidInputError(f"grid resolution must be positive, got {resolution} m")
-    x0, x1, y0, y1 = extent
-    xs = np.arange(x0, x1 + resolution / 2, resolution)
-    ys = np.arange(y0, y1 + resolution / 2, resolution)
-    if xs.size * ys.size > MAX_GRID_POINTS:
+    geometry = check_rrr_geometry(geometry)
+    alphas = _angles(alphas, "alphas")
+    box = as_real_array(extent, "extent")
+    if box.shape != (4,):
         raise InvalidInputError(
-            f"a {resolution * 1e3:g} mm grid over that area has {xs.size * ys.size:,} points "
-            f"(at most {MAX_GRID_POINTS:,})"
+            f"extent must be (x_min, x_max, y_min, y_max) [m], got shape {box.shape}"
         )
+    x0, x1, y0, y1 = (
+        check_range(v, f"extent[{i}]", -MAX_COORDINATE_M, MAX_COORDINATE_M, "m")
+        for i, v in enumerate(box.tolist())
+    )
+    if x0 > x1 or y0 > y1:
+        raise InvalidInputError(f"extent must have min <= max, got {box.tolist()} m")
+    step = as_real_number(resolution, "resolution")
+    if not math.isfinite(step):
+        raise NonFiniteInputError(f"grid resolution must be finite, got {step!r} m")
+    if not step > 0.0:
+        raise InvalidInputError(f"grid resolution must be positive, got {step!r} m")
+    # Point counts from the extent and step alone, before np.arange allocates them.
+    fx, fy = (x1 - x0) / step + 1.5, (y1 - y0) / step + 1.5  # may be inf for a denormal step
+    if fx * fy > MAX_GRID_POINTS:
+        nx, ny = min(fx, 1e300), min(fy, 1e300)
+        finest = math.sqrt(max((x1 - x0) * (y1 - y0), 1e-300) / MAX_GRID_POINTS)
+        raise InvalidInputError(
+            f"a {step * 1e3:g} mm grid over that area has about {nx * ny:.3g} points "
+            f"(at most {MAX_GRID_POINTS:,}: a resolution of at least ~{finest * 1e3:.3g} mm)"
+        )
+    xs = np.arange(x0, x1 + step / 2, step)
+    ys = np.arange(y0, y1 + step / 2, step)
     return [workspace_map(xs, ys, a, geometry) for a in alphas]

@@ -9,8 +9,18 @@ import sys
 import numpy as np
 import pytest
 
-from lynxsim.arm import LYNX_ARM, fk, frame_origins, frame_transforms, ik, tool_pose
-from lynxsim.errors import InvalidInputError
+from lynxsim.arm import (
+    LYNX_ARM,
+    fk,
+    frame_origins,
+    frame_transforms,
+    geometric_jacobian,
+    ik,
+    jacobian,
+    manipulability,
+    tool_pose,
+)
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.reproduce.arm_tables import FK_CASES, TABLE4, TABLE4_P1_ELBOW_MM, TABLE4_P1_WRIST_MM
 from tests.helpers import assert_close
 
@@ -94,3 +104,47 @@ def test_fk_rejects_wrong_joint_count():
 def test_kinematics_does_not_import_mujoco():
     code = "import sys, lynxsim.arm; sys.exit('mujoco' in sys.modules)"
     assert subprocess.run([sys.executable, "-c", code], check=False).returncode == 0
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+_ODD_Q = [
+    pytest.param("0 0 0 0 0", InvalidInputError, id="str"),
+    pytest.param(None, InvalidInputError, id="none"),
+    pytest.param({"q": 0.0}, InvalidInputError, id="dict"),
+    pytest.param([0.0, [0.0, 0.0], 0.0, 0.0], InvalidInputError, id="ragged"),
+    pytest.param(np.zeros(5, dtype=complex), InvalidInputError, id="complex"),
+    pytest.param(np.ones(5, dtype=bool), InvalidInputError, id="bool-array"),
+    pytest.param([0.0, 0.0, 0.0, 0.0, 10**400], InvalidInputError, id="int-beyond-float64"),
+    pytest.param(np.array([0.0] * 5, dtype=object), InvalidInputError, id="object-array"),
+    pytest.param([0.0, math.inf, 0.0, 0.0, 0.0], NonFiniteInputError, id="inf"),
+    pytest.param([0.0, 0.0, math.nan, 0.0, 0.0], NonFiniteInputError, id="nan"),
+    pytest.param(np.zeros(4), InvalidInputError, id="shape-4"),
+]
+
+
+@pytest.mark.parametrize(
+    "fn",
+    [fk, frame_transforms, frame_origins, tool_pose, jacobian, geometric_jacobian, manipulability],
+    ids=lambda f: f.__name__,
+)
+@pytest.mark.parametrize(("q", "error"), _ODD_Q)
+def test_joint_functions_refuse_odd_inputs_with_typed_errors(fn, q, error):
+    with pytest.raises(error):
+        fn(q)
+
+
+def test_joint_functions_accept_integer_and_float32_joints():
+    q = np.array([0, 1, -1, 0, 2])
+    assert_close(tool_pose(q).position, tool_pose(q.astype(float)).position, atol=0.0)
+    assert_close(fk(q.astype(np.float32)), fk(q.astype(np.float32).astype(float)), atol=0.0)
+
+
+def test_a_geometry_that_is_not_one_is_refused():
+    with pytest.raises(InvalidInputError, match="geometry must be an ArmGeometry"):
+        tool_pose(np.zeros(5), "lynx")  # type: ignore[arg-type]
+
+
+def test_manipulability_kind_must_be_a_listed_string():
+    with pytest.raises(InvalidInputError, match="kind must be 'position' or 'position_pitch'"):
+        manipulability(np.zeros(5), kind=np.array(["position"]))  # type: ignore[arg-type]

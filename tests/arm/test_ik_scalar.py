@@ -17,7 +17,12 @@ from lynxsim.arm import (
     tool_pose,
     tool_pose_of,
 )
-from lynxsim.errors import InvalidInputError, JointRangeError, OutOfReachError
+from lynxsim.errors import (
+    InvalidInputError,
+    JointRangeError,
+    NonFiniteInputError,
+    OutOfReachError,
+)
 from tests.helpers import assert_close
 
 JOINT_RAD = 1e-12
@@ -117,7 +122,7 @@ def test_ik_one_accepts_a_pitch_of_one_element(pitch):
         ({"pitch": np.zeros(2)}, r"pitch must be a number .*shape \(2,\)"),
         ({"pitch": np.zeros((1, 1))}, r"pitch must be a number .*shape \(1, 1\)"),
         ({"pitch": "steep"}, "pitch must be a number"),
-        ({"pitch": None}, "not finite"),  # NumPy reads None as NaN
+        ({"pitch": None}, "pitch must be a number, got None"),  # None is no NaN
         ({"pitch": 0.0, "roll": np.zeros(3)}, r"roll must be a number .*shape \(3,\)"),
         ({"pitch": 0.0, "q_ref": np.zeros(4)}, r"q_ref must have shape \(5,\), got \(4,\)"),
         ({"pitch": 0.0, "q_ref": np.zeros((2, 5))}, r"q_ref must have shape \(5,\)"),
@@ -156,3 +161,93 @@ def test_ik_one_costs_a_fraction_of_the_batch_ik_on_one_target():
     t_batch = best_of(lambda: ik(target, pitch, q_ref=q_ref))
     # Relative, so that a loaded machine slows both alike (measured: ~5 µs against ~150 µs).
     assert t_one < t_batch / SPEEDUP
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+_REACHABLE = ([0.2, 0.05, 0.1], -0.5)
+"""A tool point [m] and pitch [rad] the arm reaches."""
+
+
+@pytest.mark.parametrize(
+    "as_array",
+    [lambda v: np.array([v]), lambda v: np.array(v), lambda v: np.float32(v), lambda v: [v]],
+    ids=["1-element", "0-d", "float32", "list-of-one"],
+)
+def test_one_element_arrays_are_numbers_in_every_single_target_function(as_array):
+    (x, y, z), pitch = _REACHABLE
+    q = ik_one([x, y, z], pitch)
+    tol = 1e-6 if isinstance(as_array(0.5), np.float32) else 0.0  # float32 rounds the pitch
+    assert_close(ik_one([x, y, z], as_array(pitch)), q, atol=tol)
+    status, q_near = ik_nearest(x, y, z, as_array(pitch), as_array(0.0), None)
+    assert status is IKStatus.OK
+    assert all(type(v) is float for v in q_near)  # not 1-element arrays
+    assert_close(np.array(q_near), q, atol=tol)
+    status, _ = ik_nearest(as_array(x), as_array(y), as_array(z), pitch, 0.0, q.tolist())
+    assert status is IKStatus.OK
+    assert all(type(v) is float for v in tool_pose_of(np.asarray(q)))
+
+
+@pytest.mark.parametrize(
+    "bad",
+    ["0.3", None, 1 + 0j, True, np.bool_(False), 10**400, np.zeros(2), {"pitch": 0.0}],
+    ids=["str", "none", "complex", "bool", "numpy-bool", "int-beyond-float64", "two", "dict"],
+)
+def test_single_target_functions_refuse_odd_numbers_with_typed_errors(bad):
+    (x, y, z), pitch = _REACHABLE
+    with pytest.raises(InvalidInputError, match="pitch must be a number"):
+        ik_one([x, y, z], bad)
+    with pytest.raises(InvalidInputError, match="pitch must be a number"):
+        ik_nearest(x, y, z, bad, 0.0, None)
+    if isinstance(bad, bool | np.bool_):
+        return  # inside a list of floats NumPy reads a bool as 0.0 or 1.0
+    with pytest.raises(InvalidInputError, match="q_ref must be 5 numbers"):
+        ik_nearest(x, y, z, pitch, 0.0, [0.0, 0.0, 0.0, 0.0, bad])
+    with pytest.raises(InvalidInputError, match="q must be 5 numbers"):
+        tool_pose_of([0.0, 0.0, 0.0, 0.0, bad])
+
+
+@pytest.mark.parametrize(
+    ("q", "error"),
+    [
+        ([0.0, math.inf, 0.0, 0.0, 0.0], NonFiniteInputError),
+        ([0.0, 0.0, 0.0, 0.0, math.nan], NonFiniteInputError),
+        ([1e308] * 5, InvalidInputError),  # q2 + q3 + q4 overflows
+        ([0.0] * 4, InvalidInputError),
+        ("00000", InvalidInputError),
+    ],
+    ids=["inf", "nan-roll", "overflow", "four", "str"],
+)
+def test_tool_pose_of_refuses_joints_it_cannot_evaluate(q, error):
+    with pytest.raises(error):
+        tool_pose_of(q)
+
+
+def test_coordinates_beyond_the_sanity_bound_are_refused_not_overflowed():
+    with pytest.raises(InvalidInputError, match=r"within ±10 m"):
+        ik_one([1e200, 0.0, 0.0], 0.0)
+    with pytest.raises(InvalidInputError, match=r"within ±10 m"):
+        ik_nearest(0.0, 1e300, 0.0, 0.0, 0.0, None)
+    with pytest.raises(InvalidInputError, match=r"within ±10 m"):
+        ik([[0.2, 0.0, 0.1], [0.0, 0.0, -1e300]], 0.0)
+    # Non-finite targets stay a status of the batch IK, as documented.
+    assert ik([math.inf, 0.0, 0.0], 0.0, math.inf).status == IKStatus.NOT_FINITE
+
+
+def test_infinite_roll_is_a_status_not_a_runtime_warning():
+    (x, y, z), pitch = _REACHABLE
+    assert ik([x, y, z], pitch, math.inf).status == IKStatus.NOT_FINITE
+    with pytest.raises(NonFiniteInputError):
+        ik_one([x, y, z], pitch, np.array([-math.inf]))
+
+
+def test_wrap_angle_refuses_non_numbers_and_maps_non_finite_angles_to_nan():
+    from lynxsim.angles import wrap_angle
+
+    with pytest.raises(InvalidInputError, match="angle must be real numbers"):
+        wrap_angle("1.0")
+    with pytest.raises(InvalidInputError, match="angle must be real numbers"):
+        wrap_angle(np.array([1j]))
+    out = wrap_angle(np.array([math.inf, -math.inf, math.nan, 7.0]))  # no RuntimeWarning
+    assert np.isnan(out[:3]).all()
+    assert_close(out[3], 7.0 - 2 * math.pi, atol=1e-15)

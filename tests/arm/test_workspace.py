@@ -32,7 +32,7 @@ def test_same_seed_gives_same_samples():
 
 
 def test_non_positive_sample_count_is_refused():
-    with pytest.raises(InvalidInputError, match="positive, got 0"):
+    with pytest.raises(InvalidInputError, match="between 1 and 10,000,000, got 0"):
         sample_workspace(0, np.random.default_rng())
 
 
@@ -41,3 +41,24 @@ def test_workspace_plot_is_a_png(tmp_path):
     plot_arm_workspace(sample_workspace(5000, np.random.default_rng(0)), dest)
     assert dest.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert list(tmp_path.iterdir()) == [dest]
+
+
+@pytest.mark.parametrize(
+    ("n", "match"),
+    [
+        (999_999_999_999, "between 1 and 10,000,000, got 999,999,999,999"),
+        (10**400, "between 1 and 10,000,000"),
+        (2.5, "must be an integer"),
+        (np.array([5]), "must be an integer"),
+        (True, "must be an integer"),
+    ],
+    ids=["huge", "int-beyond-float64", "float", "array", "bool"],
+)
+def test_sample_counts_are_bounded_before_anything_is_allocated(n, match):
+    with pytest.raises(InvalidInputError, match=match):
+        sample_workspace(n, np.random.default_rng(0))
+
+
+def test_rng_must_be_a_generator():
+    with pytest.raises(InvalidInputError, match=r"rng must be a numpy\.random\.Generator"):
+        sample_workspace(10, 0)  # type: ignore[arg-type]

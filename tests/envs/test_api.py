@@ -293,7 +293,9 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
     assert env.metadata["render_fps"] == 50
     with pytest.raises(InvalidInputError, match=r"control_dt = 0.035 s is not a whole multiple"):
         ReachEnv(control_dt=0.035)
-    with pytest.raises(InvalidInputError, match="control_dt must be a positive"):
+    with pytest.raises(
+        InvalidInputError, match=r"control_dt must be between 0.002 and 1 s, got 0 s"
+    ):
         ReachEnv(control_dt=0.0)
 
 
@@ -306,22 +308,16 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
         ({"render_mode": "ansi"}, "render_mode must be None or one of"),
         ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'default'"),
         ({"distance_threshold": 0.0}, "distance_threshold must be > 0 m"),
-        ({"collision_penalty": -1.0}, "collision_penalty must be >= 0"),
+        ({"collision_penalty": -1.0}, "collision_penalty must be between 0 and 1e"),
         ({"obstacles": (0.1, 0.1)}, "obstacles must be a sequence of Cylinder, Box or Sphere"),
         ({"obstacles": REPORT_CYLINDER}, "obstacles must be a sequence of Cylinder, Box or Sphere"),
-        ({"goal_in_air_prob": 1.5}, r"goal_in_air_prob must be in \[0, 1\]"),
+        ({"goal_in_air_prob": 1.5}, "goal_in_air_prob must be between 0 and 1, got 1.5"),
         ({"position_step": 0.0}, "position_step must be a positive number"),
-        ({"camera": "side"}, "no camera named 'side'"),
+        ({"camera": "side"}, "no camera named 'side'; cameras: front, top"),
     ],
     ids=lambda v: next(iter(v)) if isinstance(v, dict) else "",
 )
 def test_bad_arguments_raise_with_the_valid_choices(kwargs, message):
-    if "camera" in kwargs:  # checked when the renderer is made, at the first frame
-        env = PickAndPlaceEnv(render_mode="rgb_array", **kwargs)
-        env.reset(seed=0)
-        with pytest.raises(InvalidInputError, match=message):
-            env.render()
-        return
     with pytest.raises(InvalidInputError, match=message):
         PickAndPlaceEnv(**kwargs)
 
@@ -333,3 +329,94 @@ def test_compute_reward_rejects_infos_that_do_not_fit_the_goals():
         env.compute_reward(goals, goals, [{"collision": False}] * 3)
     no_penalty = PickAndPlaceEnv()
     assert (no_penalty.compute_reward(goals, goals, None) == 0.0).all()  # info unused
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+
+@pytest.mark.parametrize(
+    ("control_dt", "error", "match"),
+    [
+        (1e9, InvalidInputError, r"control_dt must be between 0.002 and 1 s, got 1e\+09 s"),
+        (0.001, InvalidInputError, "control_dt must be between 0.002 and 1 s"),
+        (math.nan, NonFiniteInputError, "control_dt must be finite"),
+        (math.inf, NonFiniteInputError, "control_dt must be finite"),
+        ("0.04", InvalidInputError, "control_dt must be a number"),
+        (10**400, InvalidInputError, "control_dt must be a number"),
+        (None, InvalidInputError, "control_dt must be a number"),
+    ],
+    ids=["1e9", "below-step", "nan", "inf", "str", "int-beyond-float64", "none"],
+)
+def test_control_period_is_bounded_with_a_typed_error(control_dt, error, match):
+    with pytest.raises(error, match=match):
+        ReachEnv(control_dt=control_dt)
+
+
+def test_the_longest_control_period_is_accepted():
+    env = ReachEnv(control_dt=1.0)
+    assert env.frame_skip == 500
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"distance_threshold": "0.02"}, "distance_threshold must be a number"),
+        ({"distance_threshold": 1e300}, "distance_threshold must be between 0 and 10 m"),
+        ({"collision_penalty": math.nan}, "collision_penalty must be finite"),
+        ({"position_step": math.inf}, "position_step must be finite"),
+        ({"pitch_step": 100.0}, "pitch_step must be between 0 and 6.28319 rad"),
+        ({"joint_step": 1 + 1j}, "joint_step must be a number"),
+        ({"width": 10**9}, "width must be between 1 and 16,384"),
+        ({"width": 64.5}, "width must be an integer"),
+        ({"height": "480"}, "height must be an integer"),
+        ({"width": 4000}, "exceeds the model's off-screen buffer"),
+        ({"camera": None}, "camera must be a camera name"),
+        ({"render_mode": ["rgb_array"]}, "render_mode must be None or one of"),
+        ({"control": ["tool"]}, "control must be one of"),
+        ({"terminate_on_collision": "yes"}, "terminate_on_collision must be True or False"),
+        ({"obstacles": None}, "obstacles must be a sequence"),
+        ({"goal_in_air_prob": "half"}, "goal_in_air_prob must be a number"),
+        ({"goal_in_air_prob": math.nan}, "goal_in_air_prob must be finite"),
+    ],
+    ids=lambda v: "-".join(f"{k}={v[k]!r}"[:24] for k in v) if isinstance(v, dict) else "",
+)
+def test_constructor_arguments_of_odd_types_raise_typed_errors(kwargs, match):
+    with pytest.raises(InvalidInputError, match=match):
+        PickAndPlaceEnv(**kwargs)
+
+
+@pytest.mark.parametrize(
+    ("action", "error"),
+    [
+        ("0 0 0 0", InvalidInputError),
+        (None, InvalidInputError),
+        ([0.0, [0.0, 0.0], 0.0], InvalidInputError),
+        (np.array([True, False, True, False]), InvalidInputError),
+        (np.zeros(4, dtype=complex), InvalidInputError),
+        (np.zeros(4, dtype=object), InvalidInputError),
+        ([10**400, 0, 0, 0], InvalidInputError),
+        (np.zeros((1, 4)), InvalidInputError),
+        ([math.inf, 0.0, 0.0, 0.0], NonFiniteInputError),
+    ],
+    ids=["str", "none", "ragged", "bool", "complex", "object", "huge-int", "batch", "inf"],
+)
+def test_step_refuses_odd_actions_with_typed_errors(action, error):
+    env = ReachEnv()
+    env.reset(seed=0)
+    with pytest.raises(error):
+        env.step(action)
+    obs, *_ = env.step([1e308, -1e308, 0.0, 0.0])  # finite, clipped to [-1, 1]
+    assert np.isfinite(obs["observation"]).all()
+
+
+@pytest.mark.parametrize(
+    "seed", [-1, "1", 1.5, True, [1]], ids=["negative", "str", "float", "bool", "list"]
+)
+def test_reset_refuses_odd_seeds_with_a_typed_error(seed):
+    with pytest.raises(InvalidInputError, match="seed must be None or an integer >= 0"):
+        ReachEnv().reset(seed=seed)
+
+
+def test_reset_accepts_numpy_integer_seeds():
+    a, b = ReachEnv(), ReachEnv()
+    _assert_same(a.reset(seed=np.int64(3)), b.reset(seed=3))

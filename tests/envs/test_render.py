@@ -43,3 +43,23 @@ def test_human_mode_needs_a_display(monkeypatch):
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     with pytest.raises(InvalidInputError, match="render_mode='human' needs a display"):
         ReachEnv(render_mode="human")
+
+
+def test_envs_pickle_before_and_after_rendering():
+    import pickle
+
+    env = ReachEnv(render_mode="rgb_array", width=96, height=72)
+    env.reset(seed=3)
+    copy = pickle.loads(pickle.dumps(env))  # before any frame
+    frame = env.render()
+    assert frame is not None
+    again = pickle.loads(pickle.dumps(env))  # after: the GL context is dropped, not pickled
+    frame_again = again.render()  # and made anew on the next frame
+    np.testing.assert_array_equal(frame_again, frame)
+    np.testing.assert_array_equal(copy.render(), frame)
+    action = np.array([0.3, -0.2, 0.1, 0.0], dtype=np.float32)
+    obs, *_ = env.step(action)
+    obs_again, *_ = again.step(action)
+    np.testing.assert_array_equal(obs_again["observation"], obs["observation"])
+    for e in (env, copy, again):
+        e.close()

@@ -128,3 +128,56 @@ def test_fk_rejects_bad_shapes(bad):
 def test_fk_path_needs_a_sequence():
     with pytest.raises(InvalidInputError, match=r"\(T, 3\)"):
         fk_path(np.zeros(3), [0.2, 0.15, 0.0])
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"theta_path": np.zeros((0, 3))}, r"1 <= T <= 10,000,000, got \(0, 3\)"),
+        ({"max_halvings": 10**9}, "max_halvings must be between 0 and 16"),
+        ({"max_halvings": np.array([1, 2])}, "max_halvings must be an integer"),
+        ({"start": [0.25, 0.15]}, r"start must have shape \(..., 3\)"),
+        ({"theta_path": "abc"}, "theta_path must be real numbers"),
+    ],
+    ids=["empty-path", "huge-halvings", "array-halvings", "short-start", "str-path"],
+)
+def test_fk_path_refuses_odd_arguments_with_typed_errors(kwargs, match):
+    args = {"theta_path": np.zeros((2, 3)), "start": [0.25, 0.15, 0.0]} | kwargs
+    with pytest.raises(InvalidInputError, match=match):
+        fk_path(**args)
+
+
+def test_fk_path_stops_at_a_non_finite_sample_without_warnings():
+    theta = ik([0.25, 0.15, 0.0]).theta[0]
+    path = np.array([theta, [np.inf, 0.0, 0.0], theta])
+    follow = fk_path(path, [0.25, 0.15, 0.0])
+    assert follow.converged.tolist() == [True, False, False]
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda: fk_near(np.zeros(3), np.zeros(3), max_iter=0), "max_iter must be between 1"),
+        (lambda: fk_near(np.zeros((2, 3)), np.zeros((3, 3))), "do not broadcast"),
+        (lambda: fk_all([[0.0, 0.0, 0.0], [0.0, 0.0]]), "theta must be real numbers"),
+        (lambda: elbow_points(np.array([1j, 0, 0])), "theta must be real numbers"),
+        (lambda: loop_residual(np.zeros((2, 3)), np.zeros((3, 3))), "do not broadcast"),
+    ],
+    ids=["zero-iterations", "near-broadcast", "ragged", "complex", "residual-broadcast"],
+)
+def test_fk_functions_refuse_odd_inputs_with_typed_errors(call, match):
+    with pytest.raises(InvalidInputError, match=match):
+        call()
+
+
+def test_loop_residual_of_an_infinite_pose_is_nan_not_infinity():
+    assert np.isnan(loop_residual([0.2, -math.inf, 0.0], [0.0, 0.0, 0.0])).all()
+
+
+def test_singularity_measures_of_an_infinite_pose_are_nan_not_infinity():
+    m = singularity_measures([0.25, math.inf, 0.35], [2.0, -2.5, 0.6])
+    assert np.isnan(m.parallel)
+    assert np.isnan(m.leg).all()

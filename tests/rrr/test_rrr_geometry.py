@@ -19,6 +19,7 @@ from lynxsim.rrr import (
     mode_label,
     mode_signs,
     platform_joints,
+    rotation,
 )
 from tests.helpers import assert_close
 
@@ -134,3 +135,56 @@ def test_kinematics_do_not_import_mujoco_or_matplotlib():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"proximal": "0.17"},
+        {"distal": 10**400},
+        {"proximal": True},
+        {"base_joints": 3.0},
+        {"platform_offsets": ((0.0, 0.0), (1.0, 0.0), "xy")},
+        {"base_centre": None},
+    ],
+    ids=[
+        "str-length",
+        "int-beyond-float64",
+        "bool-length",
+        "number-not-points",
+        "str-point",
+        "none",
+    ],
+)
+def test_geometry_refuses_odd_types_with_a_typed_error(kwargs):
+    base = {
+        "base_joints": RRR_ROBOT.base_joints,
+        "platform_offsets": RRR_ROBOT.platform_offsets,
+        "proximal": 0.17,
+        "distal": 0.13,
+    }
+    with pytest.raises(InvalidInputError):
+        RRRGeometry(**(base | kwargs))
+
+
+@pytest.mark.parametrize(
+    "alpha",
+    ["0.1", None, 1j, np.array([True]), np.array([0.1, "a"], dtype=object)],
+    ids=["str", "none", "complex", "bool-array", "object-array"],
+)
+def test_rotation_and_platform_joints_refuse_non_numbers(alpha):
+    with pytest.raises(InvalidInputError, match="alpha must be real numbers"):
+        rotation(alpha)
+    with pytest.raises(InvalidInputError, match="pose must be real numbers"):
+        platform_joints([0.2, 0.1, alpha])
+
+
+def test_non_finite_poses_give_nan_platform_joints_not_infinity():
+    out = platform_joints([[0.2, math.inf, 0.0], [0.2, 0.1, 0.0]])
+    assert np.isnan(out[0]).all()
+    assert np.isfinite(out[1]).all()
+    with pytest.raises(InvalidInputError, match=r"within ±10 m"):
+        platform_joints([1e300, 0.0, 0.0])

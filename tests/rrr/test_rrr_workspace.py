@@ -13,6 +13,8 @@ from lynxsim.rrr import (
     grid_extent,
     ik,
     leg_annuli,
+    mode_index,
+    mode_label,
     orientation_intervals,
     orientation_range,
     orientation_range_in_mode,
@@ -20,6 +22,7 @@ from lynxsim.rrr import (
     singularity_measures,
     workspace_map,
 )
+from lynxsim.rrr.workspace import workspace_maps
 from tests.helpers import assert_close
 
 ALPHA_STEP = math.radians(0.005)
@@ -186,3 +189,72 @@ def test_singularity_free_mask_is_inside_the_reachable_set(grid_map):
 def test_workspace_map_rejects_bad_grids(x, y, alpha):
     with pytest.raises(InvalidInputError):
         workspace_map(x, y, alpha)
+
+
+# ------------------------------------------------------------ odd inputs (fuzz campaign)
+
+
+@pytest.mark.parametrize(
+    "resolution", [1e-300, 5e-324, 1e-7], ids=["1e-300", "denormal", "0.1-micrometre"]
+)
+def test_workspace_maps_bound_the_grid_before_allocating(resolution):
+    with pytest.raises(InvalidInputError, match=r"at most 10,000,000.*resolution of at least"):
+        workspace_maps([0.0], (0.0, 0.5, 0.0, 0.45), resolution)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"resolution": math.nan}, "resolution must be finite"),
+        ({"resolution": "0.01"}, "resolution must be a number"),
+        ({"extent": (0.0, 1e9, 0.0, 1.0)}, r"extent\[1\] must be between -10 and 10 m"),
+        ({"extent": (0.5, 0.0, 0.0, 0.4)}, "min <= max"),
+        ({"alphas": []}, "alphas must be 1 to 10,000 orientations"),
+        ({"alphas": [0.0, math.inf]}, "alphas must be finite"),
+    ],
+    ids=["nan-step", "str-step", "huge-extent", "inverted-extent", "no-alphas", "inf-alpha"],
+)
+def test_workspace_maps_refuse_odd_arguments(kwargs, match):
+    args = {"alphas": [0.0], "extent": (0.0, 0.5, 0.0, 0.45), "resolution": 0.05} | kwargs
+    with pytest.raises(InvalidInputError, match=match):
+        workspace_maps(**args)
+
+
+def test_workspace_map_bounds_its_grid_and_checks_with_theta():
+    big = np.linspace(0.0, 0.5, 4000)
+    with pytest.raises(InvalidInputError, match="has 16,000,000 points"):
+        workspace_map(big, big, 0.0)
+    with pytest.raises(InvalidInputError, match="with_theta must be True or False"):
+        workspace_map(np.zeros(3), np.zeros(3), 0.0, with_theta=np.array([1, 2]))  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda: orientation_range_in_mode(0.25, 0.15, 0, step=0.0), "step must be between"),
+        (lambda: orientation_range_in_mode(0.25, 0.15, [0, 1]), "mode must be one integer"),
+        (lambda: orientation_range_in_mode(math.inf, 0.15, 0), "x must be finite"),
+        (lambda: orientation_intervals(-math.inf, 0.15), "x must be finite"),
+        (lambda: orientation_intervals("0.25", 0.15), "x must be a number"),
+        (lambda: orientation_range([0.25, 0.15], alpha_ref="0"), "alpha_ref must be a number"),
+        (lambda: grid_extent([]), "alphas must be 1 to"),
+        (lambda: leg_annuli(None), "alpha must be a number"),
+        (lambda: mode_label(np.arange(3)), "mode_label takes one working mode"),
+        (lambda: mode_index([True, False, True]), "elbow signs must be ±1"),
+    ],
+    ids=[
+        "zero-step",
+        "two-modes",
+        "inf-x",
+        "intervals-inf",
+        "intervals-str",
+        "str-alpha",
+        "no-alphas",
+        "none-alpha",
+        "label-array",
+        "bool-signs",
+    ],
+)
+def test_orientation_and_mode_functions_refuse_odd_inputs(call, match):
+    with pytest.raises(InvalidInputError, match=match):
+        call()
