@@ -97,9 +97,21 @@ def check_count(value: int, name: str, low: int, high: int) -> int:
     """
     if isinstance(value, bool) or not isinstance(value, int):
         index = getattr(value, "__index__", None)
-        if isinstance(value, bool) or index is None:
-            raise InvalidInputError(f"{name} must be an integer, got {value!r}")
-        value = int(index())
+        try:
+            converted = None if isinstance(value, bool) or index is None else int(index())
+        except (TypeError, ValueError):  # e.g. an array of several numbers
+            converted = None
+        if converted is None:
+            raise InvalidInputError(f"{name} must be an integer, got {_short(value)}")
+        value = converted
     if not low <= value <= high:
-        raise InvalidInputError(f"{name} must be between {low:,} and {high:,}, got {value:,}")
+        digits = len(str(abs(value)))
+        got = f"{value:,}" if digits <= 30 else f"a {digits}-digit integer"
+        raise InvalidInputError(f"{name} must be between {low:,} and {high:,}, got {got}")
     return value
+
+
+def _short(value: object) -> str:
+    """``repr(value)``, at most 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
