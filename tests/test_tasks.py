@@ -31,6 +31,7 @@ from lynxsim.scene import (
 )
 from lynxsim.tasks import PlanarPose, Task, load_task
 from lynxsim.traj import ArmPose, JointPose, TrajectoryKind
+from tools.fuzz_tasks import toml_value
 
 TASKS = Path(__file__).resolve().parents[1] / "tasks"
 
@@ -1064,33 +1065,6 @@ _values = st.recursive(
 )
 
 
-def _toml(value: Any) -> str:
-    """``value`` as a TOML value (inline tables and arrays)."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return _toml_string(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml(v) for v in value) + "]"
-    return "{" + ", ".join(f"{_toml_string(k)} = {_toml(v)}" for k, v in value.items()) + "}"
-
-
-def _toml_string(text: str) -> str:
-    """``text`` as a TOML basic string, control characters escaped."""
-    escaped = "".join(
-        f"\\u{ord(c):04x}" if ord(c) < 0x20 or ord(c) == 0x7F or c in '"\\' else c for c in text
-    )
-    return f'"{escaped}"'
-
-
 @st.composite
 def _mutated_scenes(draw: st.DrawFn) -> dict[str, Any]:
     valid = draw(st.lists(st.sampled_from(_VALID_OBSTACLES), max_size=4))
@@ -1131,7 +1105,7 @@ def _mutated_scenes(draw: st.DrawFn) -> dict[str, Any]:
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(scene=_mutated_scenes(), robot=st.sampled_from(["arm", "arm", "arm", "rrr"]))
 def test_mutated_scene_loads_or_raises_a_task_file_error(scene, robot):
-    top = "".join(f"{key} = {_toml(value)}\n" for key, value in scene.items())
+    top = "".join(f"{key} = {toml_value(value)}\n" for key, value in scene.items())
     body = ARM_TASK if robot == "arm" else RRR_TASK.replace('name = "platform"\n', "")
     text = body.replace(f'robot = "{robot}"\n', f'robot = "{robot}"\n{top}', 1)
     with tempfile.TemporaryDirectory() as folder:

@@ -9,10 +9,6 @@ RuntimeWarning or a non-finite result where none is documented.
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -22,20 +18,7 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 import lynxsim.envs
-
-
-def _load_campaign() -> ModuleType:
-    path = Path(__file__).resolve().parents[2] / "tools" / "fuzz_api.py"
-    spec = importlib.util.spec_from_file_location("lynxsim_fuzz_api", path)
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up
-    spec.loader.exec_module(module)
-    return module
-
-
-campaign = _load_campaign()
+from tools import fuzz_api as campaign
 
 EXAMPLES = 40
 """Hypothesis examples per library function (45 functions: ~4 s in all)."""

@@ -8,7 +8,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from tests.fuzz.cli_cases import check_run, make_sandbox, random_argv
+from tools.fuzz_cli import check_run, make_sandbox, random_argv
 
 
 @pytest.fixture(scope="module")

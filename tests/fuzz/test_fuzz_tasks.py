@@ -12,10 +12,7 @@ task's motion of its own type has finite samples or the builder raises a
 from __future__ import annotations
 
 import copy
-import importlib.util
-import sys
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import pytest
@@ -23,6 +20,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lynxsim.tasks import Task
+from tools import fuzz_tasks as fuzz
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -30,21 +28,6 @@ EXAMPLES = 500
 """Mutants per test (each takes a few milliseconds)."""
 
 
-def _campaign() -> ModuleType:
-    """``tools/fuzz_tasks.py`` as a module (``tools`` is no package)."""
-    name = "lynxsim_tools_fuzz_tasks"
-    if name in sys.modules:
-        return sys.modules[name]
-    spec = importlib.util.spec_from_file_location(name, ROOT / "tools" / "fuzz_tasks.py")
-    assert spec is not None
-    assert spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module  # dataclasses look their module up while the file runs
-    spec.loader.exec_module(module)
-    return module
-
-
-fuzz = _campaign()
 CORPUS: list[tuple[str, str, dict[str, Any]]] = fuzz.seeds()
 STEMS = [stem for stem, _, _ in CORPUS]
 

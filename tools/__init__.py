@@ -1,0 +1,1 @@
+"""Campaign scripts (fuzzing); importable by the tests as ``tools.<name>``."""
