@@ -1,0 +1,66 @@
+"""Collision-free joint motion planning: pure numpy and OMPL, no MuJoCo.
+
+The planner asks a :class:`ClearanceOracle` for clearances of batches of joint
+vectors (the simulation layer adapts its collision checker to it; tests use fake
+worlds), certifies straight edges clear with a Lipschitz bound
+(:mod:`lynxsim.plan.edges`), searches with OMPL (:func:`plan_segment`),
+shortens, and times the result with Ruckig into an ordinary
+:class:`~lynxsim.traj.Trajectory`, checked clear again (:func:`plan_through`)::
+
+    L = arm_lipschitz()
+    motion = plan_through([q_pick, q_place], q_home, oracle, [False, True],
+                          LYNX_ARM.lower, LYNX_ARM.upper, lipschitz=L, seed=0)
+    q, qd, qdd, qddd = motion.trajectory.sample(t)
+"""
+
+from lynxsim.plan.chain import PlannedMotion, plan_through, segment_seed
+from lynxsim.plan.edges import EdgeCheck, check_edges, check_path
+from lynxsim.plan.errors import (
+    GoalsInCollisionError,
+    LocalMinimumError,
+    NoPathError,
+    PlanningError,
+    StartInCollisionError,
+    TimingClearanceError,
+    UnknownPlannerError,
+)
+from lynxsim.plan.lipschitz import HAND_EXTENT_M, arm_lipschitz, joint_radii
+from lynxsim.plan.ompl_planners import PLANNERS, PlannerName
+from lynxsim.plan.oracle import ClearanceOracle
+from lynxsim.plan.potential import potential_field_segment
+from lynxsim.plan.progress import PlanProgress, ProgressCallback
+from lynxsim.plan.segment import SegmentPlan, plan_segment
+from lynxsim.plan.shortcut import path_length, shorten_path
+from lynxsim.plan.timing import TimedMotion, TimedSegment, time_paths
+
+__all__ = [
+    "HAND_EXTENT_M",
+    "PLANNERS",
+    "ClearanceOracle",
+    "EdgeCheck",
+    "GoalsInCollisionError",
+    "LocalMinimumError",
+    "NoPathError",
+    "PlanProgress",
+    "PlannedMotion",
+    "PlannerName",
+    "PlanningError",
+    "ProgressCallback",
+    "SegmentPlan",
+    "StartInCollisionError",
+    "TimedMotion",
+    "TimedSegment",
+    "TimingClearanceError",
+    "UnknownPlannerError",
+    "arm_lipschitz",
+    "check_edges",
+    "check_path",
+    "joint_radii",
+    "path_length",
+    "plan_segment",
+    "plan_through",
+    "potential_field_segment",
+    "segment_seed",
+    "shorten_path",
+    "time_paths",
+]

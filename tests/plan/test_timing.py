@@ -1,0 +1,117 @@
+"""A task planned through several segments and timed by Ruckig: clear, within limits, stopping."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from lynxsim.arm import LYNX_ARM
+from lynxsim.plan import PlanProgress, plan_through
+from lynxsim.traj import DEFAULT_LIMITS, TrajectoryKind
+from lynxsim.traj.check import LIMIT_RTOL
+from tests.plan.worlds import LIPSCHITZ, MARGIN_M, Spheres
+
+LOWER, UPPER = LYNX_ARM.lower, LYNX_ARM.upper
+MIDDLE = 0.5 * (LOWER + UPPER)
+BALL = Spheres([MIDDLE], [0.5])
+"""A 5-D ball in the middle of the arm's joint box; the first segment must go around it."""
+
+START = MIDDLE - np.array([1.0, 0.0, 0.0, 0.0, 0.0])
+BEYOND = MIDDLE + np.array([1.0, 0.0, 0.0, 0.0, 0.0])
+LIFTED = MIDDLE + np.array([0.0, 0.9, 0.0, 0.0, 0.0])
+DENSE_DT_S = 1e-4
+"""Time step of the dense re-check of the timed motion [s]."""
+REST_TOL = 1e-6
+"""Joint speed that counts as stopped [rad/s]."""
+
+
+@pytest.fixture(scope="module")
+def motion():
+    reports: list[PlanProgress] = []
+    result = plan_through(
+        [BEYOND[None], np.array([LIFTED, LIFTED + 0.05])],
+        START,
+        BALL,
+        [False, True],
+        LOWER,
+        UPPER,
+        lipschitz=LIPSCHITZ,
+        margin_m=MARGIN_M,
+        seed=3,
+        labels=["carry", "lift"],
+        progress=reports.append,
+    )
+    return result, reports
+
+
+def test_the_timed_motion_passes_through_clear_space(motion):
+    result, _ = motion
+    traj = result.trajectory
+    t = np.arange(0.0, traj.duration, DENSE_DT_S)
+    clearance = BALL.clearance(traj.sample(t).q, grasped=False)
+    assert clearance.min() >= 0.25 * MARGIN_M  # the guarantee between checked samples
+    for timed in result.timing:
+        assert timed.min_clearance_m >= 0.5 * MARGIN_M
+        assert timed.clearance_bound_m >= 0.25 * MARGIN_M
+
+
+def test_the_motion_starts_stops_and_ends_where_planned(motion):
+    result, _ = motion
+    traj = result.trajectory
+    first, second = result.segments
+    assert np.array_equal(first.path[-1], BEYOND)
+    assert np.array_equal(second.path[0], BEYOND)
+    ends = [0.0, result.timing[0].end_s, traj.duration]
+    sample = traj.sample(np.array(ends))
+    np.testing.assert_allclose(sample.q[0], START, atol=1e-12)
+    np.testing.assert_allclose(sample.q[1], BEYOND, atol=1e-7)
+    np.testing.assert_allclose(sample.q[2], second.path[-1], atol=1e-7)
+    assert np.abs(sample.qd).max() <= REST_TOL
+
+
+def test_the_motion_keeps_the_joint_limits(motion):
+    traj = motion[0].trajectory
+    assert traj.kind is TrajectoryKind.RUCKIG
+    t = np.arange(0.0, traj.duration, DENSE_DT_S)
+    s = traj.sample(t)
+    for order, values in ((1, s.qd), (2, s.qdd), (3, s.qddd)):
+        limit = DEFAULT_LIMITS.of_order(order) * (1.0 + LIMIT_RTOL)
+        assert (np.abs(values) <= limit).all()
+    assert (s.q >= LOWER).all()
+    assert (s.q <= UPPER).all()
+
+
+def test_segments_report_their_planning_and_grasp(motion):
+    result, reports = motion
+    first, second = result.segments
+    assert first.planner == "RRTConnect"
+    assert not first.grasped
+    assert second.planner == "direct"
+    assert second.grasped
+    assert first.length_rad <= first.raw_length_rad
+    assert BALL.grasped_calls > 0
+    stages = [(r.segment, r.stage) for r in reports]
+    assert stages[0] == (0, "planning")
+    assert (1, "planning") in stages
+    assert stages[-2:] == [(2, "timing"), (2, "done")]
+    assert [r.label for r in reports if r.stage == "planning"] == ["carry", "lift"]
+
+
+def test_the_same_seed_gives_the_same_trajectory():
+    def run():
+        return plan_through(
+            [BEYOND[None]],
+            START,
+            BALL,
+            [False],
+            LOWER,
+            UPPER,
+            lipschitz=LIPSCHITZ,
+            margin_m=MARGIN_M,
+            seed=11,
+        ).trajectory
+
+    a, b = run(), run()
+    t = np.linspace(0.0, a.duration, 101)
+    assert a.duration == b.duration
+    assert a.sample(t).q.tobytes() == b.sample(t).q.tobytes()
