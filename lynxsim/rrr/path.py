@@ -30,6 +30,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import wrap_angle
+from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES, MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import (
     InvalidInputError,
     NonFiniteInputError,
@@ -39,8 +40,10 @@ from lynxsim.errors import (
 )
 from lynxsim.rrr import RRR_ROBOT, RRRGeometry, ik, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
+from lynxsim.traj.inputs import finite_array, flag, instance, positive_number, real_array
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
+from lynxsim.traj.timing import check_planned, given_durations
 
 __all__ = [
     "DEFAULT_PLATFORM_LIMITS",
@@ -96,6 +99,10 @@ class PlatformLimits:
         angular_speed: Platform rotation rate [rad/s].
         acceleration: Platform-centre acceleration [m/s^2].
         angular_acceleration: Platform angular acceleration [rad/s^2].
+
+    Raises:
+        InvalidInputError: A limit is not a positive real number.
+        NonFiniteInputError: A limit is NaN or infinite.
     """
 
     speed: float = 0.15
@@ -105,9 +112,8 @@ class PlatformLimits:
 
     def __post_init__(self) -> None:
         for name in ("speed", "angular_speed", "acceleration", "angular_acceleration"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and value > 0.0):
-                raise InvalidInputError(f"platform limit {name} must be positive, got {value!r}")
+            value = positive_number(getattr(self, name), f"platform limit {name}")
+            object.__setattr__(self, name, value)
 
 
 DEFAULT_PLATFORM_LIMITS = PlatformLimits()
@@ -248,12 +254,23 @@ class PlatformPath:
         """Poses, velocities and accelerations at times ``t``.
 
         Args:
-            t: Times from the path's start, shape (T,) [s]; clipped to [0, duration].
+            t: Times from the path's start, shape (T,) (a scalar counts as one)
+                [s]; clipped to [0, duration].
 
         Returns:
             The :class:`PathSample`.
+
+        Raises:
+            InvalidInputError: ``t`` is not real numbers of shape (T,), or holds
+                more than :data:`~lynxsim.bounds.MAX_SAMPLES` times.
+            NonFiniteInputError: A time is NaN or infinite.
         """
-        times = np.clip(np.atleast_1d(np.asarray(t, dtype=float)), 0.0, self.duration)
+        times = np.atleast_1d(finite_array(t, "sample times"))
+        if times.ndim != 1 or times.size > MAX_SAMPLES:
+            raise InvalidInputError(
+                f"sample times must have shape (T,) with T <= {MAX_SAMPLES:,}, got {times.shape}"
+            )
+        times = np.clip(times, 0.0, self.duration)
         if self.through:
             total = self.duration
             s, ds, dds = _quintic(times / total)
@@ -316,6 +333,46 @@ def _shortest_spline(path: PlatformPath, limits: PlatformLimits) -> float:
     )
 
 
+def _check_waypoints(waypoints: object) -> FloatArray:
+    """Poses of shape (N, 3), N >= 2, finite, x and y within the coordinate bound, reachable.
+
+    Raises:
+        InvalidInputError: Not real numbers, a bad shape, or x or y beyond
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`.
+        NonFiniteInputError: A value is NaN or infinite.
+        UnreachablePlatformPoseError: A leg cannot reach a pose (names the pose
+            and the legs).
+    """
+    w = real_array(waypoints, "waypoints")
+    if w.ndim != 2 or w.shape[1] != 3 or len(w) < 2:
+        raise InvalidInputError(f"waypoints must have shape (N, 3) with N >= 2, got {w.shape}")
+    if len(w) > MAX_SAMPLES:
+        raise InvalidInputError(f"at most {MAX_SAMPLES:,} waypoints, got {len(w):,}")
+    if not np.isfinite(w).all():
+        raise NonFiniteInputError(f"waypoints must be finite, got {w.tolist()}")
+    far = np.abs(w[:, :2]) > MAX_COORDINATE_M
+    if far.any():
+        i = int(np.argmax(far.any(axis=1)))
+        raise InvalidInputError(
+            f"waypoint {i + 1}: x and y must be within ±{MAX_COORDINATE_M:g} m "
+            f"(the robot spans under 1 m), got {w[i, :2].tolist()} m"
+        )
+    return w
+
+
+def _check_reach(w: FloatArray, labels: tuple[str, ...], geometry: RRRGeometry) -> None:
+    """Raise UnreachablePlatformPoseError for the first waypoint a leg cannot reach."""
+    result = ik(w, geometry)
+    if not result.ok.all():
+        i = int(np.argmin(result.ok))
+        try:
+            result.raise_for_status(i)
+        except UnreachablePlatformPoseError as exc:
+            raise UnreachablePlatformPoseError(
+                f"waypoint {labels[i]!r}: {exc}", legs=exc.legs
+            ) from None
+
+
 def platform_path(
     waypoints: npt.ArrayLike,
     durations: float | Sequence[float] | None = None,
@@ -328,12 +385,17 @@ def platform_path(
 ) -> PlatformPath:
     """A timed task-space path through platform poses.
 
+    Inputs are checked before any timing: shapes, types, finiteness, the
+    coordinate bound and the reach of every pose.
+
     Args:
         waypoints: Poses (x, y, alpha), shape (N, 3) [m, m, rad], N >= 2;
-            consecutive poses must differ.
-        durations: Time per segment [s] (one for all, or N - 1 values), or
-            None for the shortest within ``limits``. With ``through`` the path
-            takes their sum.
+            consecutive poses must differ; x and y within
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, every pose reachable.
+        durations: Time per segment [s] (one for all, or N - 1 values), each in
+            [:data:`~lynxsim.bounds.MIN_SEGMENT_S`, :data:`~lynxsim.bounds.MAX_SEGMENT_S`]
+            (:func:`lynxsim.traj.timing.given_durations`), or None for the
+            shortest within ``limits``. With ``through`` the path takes their sum.
         names: Waypoint names (default ``P1``, ``P2``, ...).
         through: One spline through every pose instead of stopping at each.
         stretch: Lengthen durations that are too short for ``limits`` instead
@@ -342,24 +404,41 @@ def platform_path(
         geometry: The robot (platform radius for the arc length).
 
     Returns:
-        The :class:`PlatformPath`.
+        The :class:`PlatformPath`; every segment lasts 0.001 to 3600 s (with
+        ``through``: the total is at most 3600 s per segment).
 
     Raises:
-        InvalidInputError: Bad shapes, repeated consecutive poses, bad durations.
+        InvalidInputError: Bad shapes or types, a coordinate beyond the bound,
+            repeated consecutive poses, bad durations, or limits so low that a
+            segment needs more than 3600 s.
         NonFiniteInputError: A pose or duration is NaN or infinite.
+        UnreachablePlatformPoseError: A leg cannot reach a waypoint.
         SegmentDurationError: A given duration breaks ``limits`` and ``stretch``
             is false (``joint`` is the axis 1..3 = x, y, alpha that needs longest).
     """
-    w = as_pose_array(waypoints, "waypoints")
-    if w.ndim != 2 or len(w) < 2:
-        raise InvalidInputError(f"waypoints must have shape (N, 3) with N >= 2, got {w.shape}")
-    if not np.isfinite(w).all():
-        raise NonFiniteInputError(f"waypoints must be finite, got {w.tolist()}")
+    geometry = instance(geometry, RRRGeometry, "geometry")
+    limits = instance(limits, PlatformLimits, "limits")
+    through = flag(through, "through")
+    stretch = flag(stretch, "stretch")
+    w = _check_waypoints(waypoints)
     n_seg = len(w) - 1
-    labels = tuple(names) if names is not None else tuple(f"P{i + 1}" for i in range(len(w)))
+    if names is None:
+        labels = tuple(f"P{i + 1}" for i in range(len(w)))
+    elif (
+        not isinstance(names, Sequence)
+        or isinstance(names, str)
+        or not all(isinstance(n, str) for n in names)
+    ):
+        raise InvalidInputError(f"names must be a sequence of strings, got {names!r}")
+    else:
+        labels = tuple(names)
     if len(labels) != len(w):
         raise InvalidInputError(f"got {len(labels)} names for {len(w)} waypoints")
-    step = np.linalg.norm(np.diff(w, axis=0) * _metric(geometry), axis=1)
+    _check_reach(w, labels, geometry)
+    with np.errstate(over="ignore"):  # alpha beyond ±1e307: inf, refused below
+        step = np.linalg.norm(np.diff(w, axis=0) * _metric(geometry), axis=1)
+    if not np.isfinite(step).all():
+        raise InvalidInputError("consecutive waypoints differ by more than float64 can hold")
     if (step < _SAME_POSE_TOL).any():
         i = int(np.argmax(step < _SAME_POSE_TOL))
         raise InvalidInputError(
@@ -372,25 +451,21 @@ def platform_path(
         knots = np.concatenate([[0.0], np.cumsum(step)])
         curvature = _spline_second_derivatives(knots, w, closed)
 
-    given: FloatArray | None = None
-    if durations is not None:
-        given = np.asarray(durations, dtype=float)
-        if given.ndim == 0:
-            given = np.full(n_seg, float(given))
-        if given.shape != (n_seg,):
-            raise InvalidInputError(
-                f"expected one duration or {n_seg} segment durations, got shape {given.shape}"
-            )
-        if not np.isfinite(given).all():
-            raise NonFiniteInputError(f"segment durations must be finite, got {given.tolist()}")
-        if (given <= 0.0).any():
-            raise InvalidInputError(f"segment durations must be positive, got {given.tolist()}")
+    given = given_durations(durations, n_seg, labels)
 
     def build(d: FloatArray) -> PlatformPath:
         return PlatformPath(w, labels, d, through, closed, geometry, knots, curvature)
 
     if through:
-        shortest = _shortest_spline(build(np.ones(n_seg)), limits)
+        with np.errstate(over="ignore"):  # tiny limits: inf, refused below
+            shortest = _shortest_spline(build(np.ones(n_seg)), limits)
+        if not shortest <= n_seg * MAX_SEGMENT_S:
+            raise InvalidInputError(
+                f"the path through {len(w)} poses needs {shortest:.4g} s within the platform "
+                f"limits, more than {MAX_SEGMENT_S:g} s per segment: the limits are too low "
+                "for this path"
+            )
+        shortest = max(shortest, n_seg * MIN_SEGMENT_S)
         if given is None:
             return build(np.full(n_seg, shortest / n_seg))
         total = float(given.sum())
@@ -407,16 +482,20 @@ def platform_path(
             given = given * (shortest / total)
         return build(given)
 
-    shortest_seg = _shortest_segments(w, limits)
+    with np.errstate(over="ignore"):  # tiny limits: inf, refused by check_planned
+        shortest_seg = _shortest_segments(w, limits)
     if given is None:
-        return build(shortest_seg)
+        chosen = np.maximum(shortest_seg, MIN_SEGMENT_S)
+        check_planned(chosen, labels, "platform limits")
+        return build(chosen)
     short = given < shortest_seg * (1.0 - 1e-12)
     if short.any() and not stretch:
         i = int(np.argmax(short))
         d = np.abs(np.diff(w, axis=0)[i])
-        axis = int(
-            np.argmax([d[0] / limits.speed, d[1] / limits.speed, d[2] / limits.angular_speed])
-        )
+        with np.errstate(over="ignore"):  # denormal limits: inf
+            axis = int(
+                np.argmax([d[0] / limits.speed, d[1] / limits.speed, d[2] / limits.angular_speed])
+            )
         raise SegmentDurationError(
             f"segment {labels[i]} -> {labels[i + 1]} needs at least {shortest_seg[i]:.3f} s within "
             f"the platform limits, got {given[i]:.3f} s (set stretch to lengthen it)",
@@ -425,7 +504,9 @@ def platform_path(
             given=float(given[i]),
             required=float(shortest_seg[i]),
         )
-    return build(np.maximum(given, shortest_seg))
+    chosen = np.maximum(given, shortest_seg)
+    check_planned(chosen, labels, "platform limits")
+    return build(chosen)
 
 
 def actuated_window(geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:

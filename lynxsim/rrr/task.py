@@ -14,6 +14,7 @@ from lynxsim.rrr.path import (
 )
 from lynxsim.tasks import PlanarPose, Task
 from lynxsim.traj.build import parse_kind
+from lynxsim.traj.inputs import instance
 from lynxsim.traj.kinds import TrajectoryKind
 
 __all__ = ["path_from_task"]
@@ -37,10 +38,14 @@ def path_from_task(
         one spline through the poses).
 
     Raises:
-        InvalidInputError: The task is not for the 3-RRR, or the type is not
-            planned for it (the message lists those that are).
-        SegmentDurationError: A duration is too short and ``stretch`` is off.
+        InvalidInputError: ``task`` is not a :class:`~lynxsim.tasks.Task`, the
+            task is not for the 3-RRR, the type is not planned for it (the
+            message lists those that are), or ``limits`` is not a
+            :class:`~lynxsim.rrr.path.PlatformLimits`.
+        LynxsimError: Whatever :func:`~lynxsim.rrr.path.platform_path` raises
+            (unreachable poses, durations out of range or too short).
     """
+    task = instance(task, Task, "task")
     poses = [p for p in task.poses if isinstance(p, PlanarPose)]
     if len(poses) != len(task.poses):
         raise InvalidInputError(

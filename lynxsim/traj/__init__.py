@@ -12,7 +12,7 @@ limits), and returns a checked :class:`Trajectory` sampled by time::
 from lynxsim.traj.build import generate
 from lynxsim.traj.cartesian import LineSegment, cartesian_line
 from lynxsim.traj.check import check_trajectory
-from lynxsim.traj.kinds import TrajectoryKind
+from lynxsim.traj.kinds import WAYPOINT_KINDS, TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.lspb import lspb
 from lynxsim.traj.polynomial import (
@@ -29,6 +29,7 @@ from lynxsim.traj.waypoints import ArmPose, JointPose, Waypoints, WaypointsLike,
 
 __all__ = [
     "DEFAULT_LIMITS",
+    "WAYPOINT_KINDS",
     "ArmPose",
     "Durations",
     "JointLimits",

@@ -5,6 +5,7 @@ from __future__ import annotations
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError
 from lynxsim.traj.cartesian import cartesian_line
+from lynxsim.traj.inputs import flag
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.lspb import lspb
@@ -60,10 +61,12 @@ def generate(
         The checked :class:`Trajectory`.
 
     Raises:
-        InvalidInputError: Unknown type, or ``pass_through`` for a type that stops.
+        InvalidInputError: Unknown type, ``pass_through`` not a bool or given
+            for a type that stops.
         LynxsimError: Whatever the generator raises (see each generator).
     """
     kind = parse_kind(kind)
+    pass_through = flag(pass_through, "pass_through")
     if kind is TrajectoryKind.RUCKIG:
         return ruckig_trajectory(
             waypoints,
@@ -72,6 +75,11 @@ def generate(
             stretch=stretch,
             pass_through=pass_through,
             geometry=geometry,
+        )
+    if kind is TrajectoryKind.PLANNED:
+        raise InvalidInputError(
+            "planned trajectories are searched around a scene's obstacles, not generated "
+            "through given waypoints: use lynxsim.sim.arm.planning.plan_task"
         )
     if pass_through:
         raise InvalidInputError(f"pass_through applies to ruckig trajectories, not {kind.value}")

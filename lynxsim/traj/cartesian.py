@@ -24,14 +24,16 @@ import numpy.typing as npt
 
 from lynxsim.angles import LIMIT_TOL, wrap_angle
 from lynxsim.arm import LYNX_ARM, ArmGeometry, ik
+from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
 from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
+from lynxsim.traj.inputs import instance, number_in_range
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
-from lynxsim.traj.polynomial import DURATION_HINT, quintic_scaling
+from lynxsim.traj.polynomial import DURATION_HINT, check_options, quintic_scaling
 from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
 from lynxsim.traj.trajectory import Trajectory
-from lynxsim.traj.waypoints import ArmPose, WaypointsLike, resolve_waypoints
+from lynxsim.traj.waypoints import ArmPose, WaypointsLike, check_geometry, resolve_waypoints
 
 __all__ = ["LineSegment", "cartesian_line"]
 
@@ -56,6 +58,11 @@ class LineSegment:
             base side (0: as the target's heading, 1: turned by pi), bit 0 the
             elbow (0: ``q3 <= 0``, 1: ``q3 >= 0``).
         geometry: The arm description.
+
+    Raises:
+        InvalidInputError: A pose is not an :class:`ArmPose` with its roll set,
+            the duration is not in [0.001, 3600] s, the branch not 0..3, or the
+            geometry not an :class:`~lynxsim.arm.ArmGeometry`.
     """
 
     start: ArmPose
@@ -66,13 +73,22 @@ class LineSegment:
     _rolls: tuple[float, float] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        if self.start.roll is None or self.end.roll is None:
+        start = instance(self.start, ArmPose, "start")
+        end = instance(self.end, ArmPose, "end")
+        if start.roll is None or end.roll is None:
             raise InvalidInputError("line segment poses need their roll set")
-        if not (math.isfinite(self.duration) and self.duration > 0.0):
-            raise InvalidInputError(f"duration must be positive, got {self.duration}")
-        if self.branch not in range(4):
-            raise InvalidInputError(f"branch must be 0..3, got {self.branch}")
-        object.__setattr__(self, "_rolls", (self.start.roll, self.end.roll))
+        duration = number_in_range(self.duration, "duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
+        object.__setattr__(self, "duration", duration)
+        branch = self.branch
+        if (
+            isinstance(branch, bool)
+            or not isinstance(branch, int | np.integer)
+            or branch not in range(4)
+        ):
+            raise InvalidInputError(f"branch must be 0..3, got {self.branch!r}")
+        object.__setattr__(self, "branch", int(branch))
+        check_geometry(self.geometry)
+        object.__setattr__(self, "_rolls", (start.roll, end.roll))
 
     @property
     def breakpoints(self) -> FloatArray:
@@ -284,8 +300,10 @@ def cartesian_line(
         LimitViolationError: A joint leaves its range on a line, or given durations
             break a limit (names joint, time, excess).
         UnreachablePoseError: A pose has no IK solution (names the pose).
-        InvalidInputError: Malformed waypoints or durations.
+        InvalidInputError: Malformed waypoints, durations or options, or limits
+            so low that a line needs more than 3600 s.
     """
+    limits, stretch, geometry = check_options(limits, stretch, geometry)
     wp = resolve_waypoints(waypoints, geometry)
     unit = [
         LineSegment(a, b, 1.0, _branch(q, a, geometry), geometry)

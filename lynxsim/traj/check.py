@@ -11,15 +11,18 @@ its limits exactly.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple, NoReturn
+from typing import TYPE_CHECKING, NamedTuple, NoReturn
 
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
-from lynxsim.errors import LimitViolationError
-from lynxsim.traj.trajectory import Segment, Trajectory
+from lynxsim.errors import InvalidInputError, LimitViolationError
+from lynxsim.traj.inputs import instance
+
+if TYPE_CHECKING:  # trajectory.py imports the waypoints, which import CHECK_POINTS from here
+    from lynxsim.traj.trajectory import Segment, Trajectory
 
 __all__ = [
     "CHECK_POINTS",
@@ -178,7 +181,21 @@ def check_trajectory(
     Raises:
         LimitViolationError: Names the joint, the time, the segment, the value,
             the bound and by how much it is broken.
+        InvalidInputError: ``traj`` is not a :class:`Trajectory`, ``geometry``
+            not an :class:`~lynxsim.arm.ArmGeometry`, ``hint`` not a string, or
+            ``extremes`` not one :class:`Extremes` per segment.
     """
+    from lynxsim.traj.trajectory import Trajectory  # not at the top: an import cycle (see there)
+
+    traj = instance(traj, Trajectory, "traj")
+    geometry = instance(geometry, ArmGeometry, "geometry")
+    hint = instance(hint, str, "hint")
+    if extremes is not None and not (
+        isinstance(extremes, list)
+        and len(extremes) == len(traj.segments)
+        and all(isinstance(e, Extremes) for e in extremes)
+    ):
+        raise InvalidInputError(f"extremes must be a list of {len(traj.segments)} Extremes")
     orders = (0, *traj.kind.limited_orders)
     kind = traj.kind.value
     bounds = _bounds(traj, geometry)
@@ -245,10 +262,12 @@ def check_trajectory(
         )
 
     for order in orders[1:]:
-        ratio = value[:, order] / bounds[order]  # (K, 2, 5)
+        with np.errstate(over="ignore"):  # denormal limits: inf, reported as broken
+            ratio = value[:, order] / bounds[order]  # (K, 2, 5)
         k, side, j = _argmax(ratio)
         if ratio[k, side, j] > 1.0 + LIMIT_RTOL:
             peak = float(sign[side, 0] * value[k, order, side, j])
+            excess_percent = 100.0 * (float(ratio[k, side, j]) - 1.0)  # inf: no warning
             unit = _UNITS[order]
             fail(
                 order,
@@ -256,7 +275,7 @@ def check_trajectory(
                 float(where[k, order, side, j]),
                 j,
                 f"{_QUANTITIES[order]} {peak:.4g} {unit} exceeds its limit "
-                f"{bounds[order, side, j]:.4g} {unit} by {100.0 * (ratio[k, side, j] - 1.0):.3g} %",
+                f"{bounds[order, side, j]:.4g} {unit} by {excess_percent:.3g} %",
                 peak,
                 side,
             )

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 
-__all__ = ["TrajectoryKind"]
+__all__ = ["WAYPOINT_KINDS", "TrajectoryKind"]
 
 
 class TrajectoryKind(enum.StrEnum):
@@ -23,6 +23,7 @@ class TrajectoryKind(enum.StrEnum):
     LSPB = "lspb"
     LINE = "line"
     RUCKIG = "ruckig"
+    PLANNED = "planned"
 
     @property
     def continuity(self) -> int:
@@ -47,6 +48,7 @@ _CONTINUITY = {
     TrajectoryKind.LSPB: 1,
     TrajectoryKind.LINE: 2,
     TrajectoryKind.RUCKIG: 2,
+    TrajectoryKind.PLANNED: 2,
 }
 
 _DESCRIPTIONS = {
@@ -62,4 +64,13 @@ _DESCRIPTIONS = {
     "quintic time scaling per segment (stops at every pose)",
     TrajectoryKind.RUCKIG: "time-optimal jerk-limited joint motion (Ruckig), "
     "optionally passing via poses without stopping",
+    TrajectoryKind.PLANNED: "collision-free motion around the task's obstacles: joint-space "
+    "path found by OMPL (RRT-Connect), shortened, timed with Ruckig, checked clear",
 }
+
+
+WAYPOINT_KINDS: tuple[TrajectoryKind, ...] = tuple(
+    k for k in TrajectoryKind if k is not TrajectoryKind.PLANNED
+)
+"""The types generated through given waypoints (every type but ``planned``, which is
+searched around a scene's obstacles by :mod:`lynxsim.sim.arm.planning`)."""

@@ -17,14 +17,15 @@ import numpy.typing as npt
 
 from lynxsim.arm.servos import AL5D_SERVOS
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.traj.inputs import instance, real_array
 
-__all__ = ["DEFAULT_LIMITS", "JointLimits"]
+__all__ = ["DEFAULT_LIMITS", "JointLimits", "check_limits"]
 
 FloatArray = npt.NDArray[np.float64]
 
 
-def _positive_5(values: npt.ArrayLike, what: str) -> tuple[float, ...]:
-    arr = np.asarray(values, dtype=float)
+def _positive_5(values: object, what: str) -> tuple[float, ...]:
+    arr = real_array(values, f"{what} limits")
     if arr.shape == ():
         arr = np.full(5, float(arr))
     if arr.shape != (5,):
@@ -50,7 +51,8 @@ class JointLimits:
     A scalar given for a field applies to every joint.
 
     Raises:
-        InvalidInputError: A limit is not positive or has the wrong shape.
+        InvalidInputError: A limit is not a real number, not positive or has the
+            wrong shape.
         NonFiniteInputError: A limit is NaN or infinite.
     """
 
@@ -75,3 +77,8 @@ DEFAULT_LIMITS = JointLimits(
 """The arm's default limits: :class:`~lynxsim.arm.servos.ServoSpec`'s
 ``velocity_limit``, ``acceleration_limit`` and ``jerk_limit`` of
 :data:`~lynxsim.arm.servos.AL5D_SERVOS`."""
+
+
+def check_limits(limits: object) -> JointLimits:
+    """``limits`` if it is a :class:`JointLimits`, else raise InvalidInputError."""
+    return instance(limits, JointLimits, "limits")

@@ -13,14 +13,19 @@ ends at rest, so the waypoints are passed exactly.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ArmGeometry
+from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
+from lynxsim.errors import InvalidInputError
 from lynxsim.traj.check import check_trajectory
+from lynxsim.traj.inputs import finite_array, number_in_range, positive_number, real_number
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
-from lynxsim.traj.polynomial import DURATION_HINT
+from lynxsim.traj.polynomial import DURATION_HINT, check_options
 from lynxsim.traj.timing import Durations, segment_durations
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
 from lynxsim.traj.waypoints import WaypointsLike, resolve_waypoints
@@ -29,22 +34,33 @@ __all__ = ["lspb", "lspb_segment"]
 
 FloatArray = npt.NDArray[np.float64]
 
+MIN_BLEND = 1e-12
+"""Shortest blend as a fraction of the segment [-]: a segment whose joints barely move
+(path acceleration beyond float64) still gets three distinct pieces; the blends are then
+longer than the limits need, so the joints accelerate less."""
+
 
 def _path_limits(delta: FloatArray, limits: JointLimits) -> tuple[FloatArray, FloatArray]:
     """Largest path speed and acceleration all joints allow, shape (M,) each [1/s, 1/s^2]."""
     d = np.abs(delta)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # no motion, or a denormal one: inf
         v = np.min(np.asarray(limits.velocity) / d, axis=1)
         a = np.min(np.asarray(limits.acceleration) / d, axis=1)
     return v, a
 
 
 def _shortest(v: FloatArray, a: FloatArray) -> FloatArray:
-    """Shortest rest-to-rest time for a unit path: trapezoid, or triangle if V is never reached."""
-    with np.errstate(invalid="ignore", divide="ignore"):
+    """Shortest rest-to-rest time for a unit path: trapezoid, or triangle if V is never reached.
+
+    Returns:
+        Shape (M,) [s]: 0 for a segment without motion, inf where the limits are
+        too low for float64 (refused by :func:`~lynxsim.traj.timing.check_planned`).
+    """
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         triangle = v * v >= a
         t = np.where(triangle, 2.0 / np.sqrt(a), 1.0 / v + v / a)
-    return np.where(np.isfinite(t), t, 0.0)
+    # 0 without motion (v = a = inf); inf where the limits underflow (v = a = 0).
+    return np.where(np.isnan(t), np.inf, t)
 
 
 def lspb_segment(
@@ -55,24 +71,39 @@ def lspb_segment(
     Args:
         q0: Start joints, shape (5,) [rad].
         q1: End joints, shape (5,) [rad].
-        duration: Segment duration [s].
-        accel: Path acceleration of the blends [1/s^2] (``s`` runs from 0 to 1).
-            If the duration is too short for it (``accel duration^2 < 4``), the
-            blends take half the segment each (a triangle at ``4 / duration^2``).
+        duration: Segment duration, 0.001 to 3600 [s].
+        accel: Path acceleration of the blends [1/s^2] (``s`` runs from 0 to 1),
+            positive, ``inf`` for a segment without motion. If the duration is
+            too short for it (``accel duration^2 < 4``), the blends take half the
+            segment each (a triangle at ``4 / duration^2``); blends are at least
+            :data:`MIN_BLEND` of the duration.
 
     Returns:
         The piecewise-quadratic segment (two or three pieces).
+
+    Raises:
+        InvalidInputError: A value is not a real number, or out of range.
+        NonFiniteInputError: A joint value is NaN or infinite.
     """
-    t = duration
+    q0, q1 = (finite_array(q, name) for q, name in ((q0, "q0"), (q1, "q1")))
+    if q0.shape != (5,) or q1.shape != (5,):
+        raise InvalidInputError(f"q0 and q1 must have shape (5,), got {q0.shape}, {q1.shape}")
+    t = number_in_range(duration, "duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
+    accel = real_number(accel, "accel")
+    if accel != math.inf:
+        accel = positive_number(accel, "accel", "1/s^2")
     disc = t * t - 4.0 / accel
-    tb = 0.5 * (t - np.sqrt(disc)) if disc > 0.0 else 0.5 * t
+    # The smaller root of tb^2 - t tb + 1/accel = 0, in the form without cancellation.
+    tb = 2.0 / (accel * (t + math.sqrt(disc))) if disc > 0.0 else 0.5 * t
+    tb = max(tb, MIN_BLEND * t)
     a = 1.0 / (tb * (t - tb))  # path acceleration that reaches s = 1 at t
     v = a * tb
     s_tb = 0.5 * a * tb * tb
-    dq = q1 - q0
-    blend_in = np.stack([q0, np.zeros(5), 0.5 * a * dq])
-    cruise = np.stack([q0 + s_tb * dq, v * dq, np.zeros(5)])
-    blend_out = np.stack([q1 - s_tb * dq, v * dq, -0.5 * a * dq])
+    with np.errstate(over="ignore", invalid="ignore"):  # joints beyond 1e307 rad: refused below
+        dq = q1 - q0
+        blend_in = np.stack([q0, np.zeros(5), 0.5 * a * dq])
+        cruise = np.stack([q0 + s_tb * dq, v * dq, np.zeros(5)])
+        blend_out = np.stack([q1 - s_tb * dq, v * dq, -0.5 * a * dq])
     if t - 2.0 * tb > 0.0:
         return PolynomialSegment(
             np.array([0.0, tb, t - tb, t]), np.stack([blend_in, cruise, blend_out])
@@ -106,8 +137,9 @@ def lspb(
     Raises:
         LimitViolationError: Given durations break a limit (names joint, time, excess).
         UnreachablePoseError: A pose has no IK solution (names the pose).
-        InvalidInputError: Malformed waypoints or durations.
+        InvalidInputError: Malformed waypoints, durations or options.
     """
+    limits, stretch, geometry = check_options(limits, stretch, geometry)
     wp = resolve_waypoints(waypoints, geometry)
     delta = np.diff(wp.q, axis=0)
     v, a = _path_limits(delta, limits)

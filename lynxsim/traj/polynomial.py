@@ -22,12 +22,15 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ArmGeometry
+from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
+from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.traj.check import check_trajectory
+from lynxsim.traj.inputs import finite_array, flag, number_in_range
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits, check_limits
 from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
-from lynxsim.traj.waypoints import WaypointsLike, resolve_waypoints
+from lynxsim.traj.waypoints import WaypointsLike, check_geometry, resolve_waypoints
 
 __all__ = [
     "cubic",
@@ -41,6 +44,42 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 
 DURATION_HINT = "give longer durations, set stretch, or leave the durations out for the shortest"
+
+
+def _boundary_system(
+    t0: object, tf: object, values: tuple[object, ...]
+) -> tuple[float, float, FloatArray]:
+    """Check the times and boundary values of a polynomial fit.
+
+    Returns:
+        ``t0, tf`` [s] and the boundary values broadcast and stacked, shape
+        (len(values),) + S.
+
+    Raises:
+        InvalidInputError: A time is not a number in [-3600, 3600] s, ``tf - t0``
+            is not in [0.001, 3600] s, or the values are not real numbers that
+            broadcast together.
+        NonFiniteInputError: A time or value is NaN or infinite.
+    """
+    t0 = number_in_range(t0, "t0", -MAX_SEGMENT_S, MAX_SEGMENT_S, "s")
+    tf = number_in_range(tf, "tf", -MAX_SEGMENT_S, MAX_SEGMENT_S, "s")
+    number_in_range(tf - t0, "tf - t0", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
+    arrays = [finite_array(v, "boundary values") for v in values]
+    try:
+        b = np.array(np.broadcast_arrays(*arrays), dtype=float)
+    except ValueError as exc:
+        raise InvalidInputError(f"boundary values do not broadcast: {exc}") from None
+    return t0, tf, b
+
+
+def _solve(a: FloatArray, b: FloatArray) -> FloatArray:
+    """``a^-1 b`` over the leading axis of ``b``; raise if the coefficients overflow."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = np.linalg.solve(a, b.reshape(b.shape[0], -1))
+    out: FloatArray = np.asarray(x, dtype=np.float64).reshape(b.shape)
+    if not np.isfinite(out).all():
+        raise NonFiniteInputError("boundary values too large: the coefficients overflow float64")
+    return out
 
 
 def cubic_coefficients(
@@ -57,8 +96,8 @@ def cubic_coefficients(
     ``0, 1, 2 t0, 3 t0^2``.
 
     Args:
-        t0: Start time [s].
-        tf: End time [s], ``tf != t0``.
+        t0: Start time [s], in [-3600, 3600].
+        tf: End time [s], ``tf - t0`` in [0.001, 3600] s.
         q0: Start position, shape S [rad].
         v0: Start velocity, broadcastable to S [rad/s].
         qf: End position, broadcastable to S [rad].
@@ -66,7 +105,13 @@ def cubic_coefficients(
 
     Returns:
         ``a0..a3``, shape (4,) + S [rad/s^k], ascending powers of ``t``.
+
+    Raises:
+        InvalidInputError: Times out of range, values not real numbers or not
+            broadcastable.
+        NonFiniteInputError: A value is NaN or infinite, or the coefficients overflow.
     """
+    t0, tf, b = _boundary_system(t0, tf, (q0, v0, qf, vf))
     a = np.array(
         [
             [1.0, t0, t0**2, t0**3],
@@ -75,8 +120,7 @@ def cubic_coefficients(
             [0.0, 1.0, 2 * tf, 3 * tf**2],
         ]
     )
-    b = np.array(np.broadcast_arrays(q0, v0, qf, vf), dtype=float)
-    return np.linalg.solve(a, b.reshape(4, -1)).reshape(b.shape)
+    return _solve(a, b)
 
 
 def quintic_coefficients(
@@ -94,8 +138,8 @@ def quintic_coefficients(
     Solves the report's eq. 52 with its two typos corrected (SPEC 3.5).
 
     Args:
-        t0: Start time [s].
-        tf: End time [s], ``tf != t0``.
+        t0: Start time [s], in [-3600, 3600].
+        tf: End time [s], ``tf - t0`` in [0.001, 3600] s.
         q0: Start position, shape S [rad].
         v0: Start velocity, broadcastable to S [rad/s].
         a0: Start acceleration, broadcastable to S [rad/s^2].
@@ -105,7 +149,13 @@ def quintic_coefficients(
 
     Returns:
         ``a0..a5``, shape (6,) + S [rad/s^k], ascending powers of ``t``.
+
+    Raises:
+        InvalidInputError: Times out of range, values not real numbers or not
+            broadcastable.
+        NonFiniteInputError: A value is NaN or infinite, or the coefficients overflow.
     """
+    t0, tf, b = _boundary_system(t0, tf, (q0, v0, a0, qf, vf, af))
 
     def rows(t: float) -> list[list[float]]:
         return [
@@ -115,8 +165,7 @@ def quintic_coefficients(
         ]
 
     a = np.array(rows(t0) + rows(tf))
-    b = np.array(np.broadcast_arrays(q0, v0, a0, qf, vf, af), dtype=float)
-    return np.linalg.solve(a, b.reshape(6, -1)).reshape(b.shape)
+    return _solve(a, b)
 
 
 def quintic_scaling(u: FloatArray) -> FloatArray:
@@ -167,6 +216,18 @@ _COEFFICIENTS: dict[TrajectoryKind, Callable[[FloatArray, FloatArray, float], Fl
 }
 
 
+def check_options(
+    limits: object, stretch: object, geometry: object
+) -> tuple[JointLimits, bool, ArmGeometry]:
+    """The generators' keyword options, type-checked.
+
+    Raises:
+        InvalidInputError: ``limits`` is not a :class:`JointLimits`, ``stretch``
+            not a bool, or ``geometry`` not an :class:`~lynxsim.arm.ArmGeometry`.
+    """
+    return check_limits(limits), flag(stretch, "stretch"), check_geometry(geometry)
+
+
 def _joint_polynomial(
     kind: TrajectoryKind,
     waypoints: WaypointsLike,
@@ -175,6 +236,7 @@ def _joint_polynomial(
     stretch: bool,
     geometry: ArmGeometry,
 ) -> Trajectory:
+    limits, stretch, geometry = check_options(limits, stretch, geometry)
     wp = resolve_waypoints(waypoints, geometry)
     delta = np.abs(np.diff(wp.q, axis=0))
     peaks = np.stack([f * delta for f in _UNIT_PEAKS[kind]])

@@ -22,18 +22,22 @@ never prepends a braking phase.
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import numpy.typing as npt
 import ruckig  # type: ignore[import-not-found]  # ships no type information
 
 from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
+from lynxsim.bounds import MIN_SEGMENT_S
 from lynxsim.errors import SegmentDurationError, TrajectoryError
 from lynxsim.traj.check import check_trajectory
+from lynxsim.traj.inputs import flag
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
-from lynxsim.traj.polynomial import DURATION_HINT
-from lynxsim.traj.timing import Durations, given_durations, require_motion
+from lynxsim.traj.polynomial import DURATION_HINT, check_options
+from lynxsim.traj.timing import Durations, check_planned, given_durations, require_motion
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
 from lynxsim.traj.waypoints import Waypoints, WaypointsLike, resolve_waypoints
 
@@ -51,6 +55,41 @@ segment is planned again with limits tighter by 1e-9 [-]."""
 
 _BREAK_TOL = 1e-12
 """Phase boundaries of different joints closer than this merge [s]."""
+
+_RESULTS = {
+    0: "working",
+    1: "finished",
+    -1: "an error",
+    -100: "invalid input (limits or states Ruckig cannot read)",
+    -101: "the trajectory would last longer than Ruckig can compute (7600 s)",
+    -102: "a position limit cannot be kept",
+    -104: "zero limits",
+    -110: "the time-optimal duration could not be calculated",
+    -111: "the segment's joints could not be synchronised",
+}
+"""Ruckig's result codes (``ruckig::Result``); the Python module names only some of them."""
+
+_RESULT_CODE = re.compile(r"^(-?\d+) is not a valid Result")
+
+
+def _calculate(otg: ruckig.Ruckig, inp: ruckig.InputParameter, out: ruckig.Trajectory) -> str:
+    """Run Ruckig's offline calculation; "" on success, else why it failed (one line)."""
+    try:
+        result = otg.calculate(inp, out)
+    except ruckig.RuckigError as exc:
+        first = next((line for line in str(exc).splitlines() if line.strip()), "an error")
+        reason = first.strip().rstrip(":").removesuffix(" input")
+        return f"{reason} (limits or states beyond its range)"
+    except ValueError as exc:  # a result code the Python module has no name for
+        match = _RESULT_CODE.match(str(exc))
+        if match is None:
+            return str(exc)
+        code = int(match.group(1))
+        return f"{_RESULTS.get(code, 'an unknown error')} (Ruckig result {code})"
+    code = int(result.value)
+    if code not in (0, 1):
+        return f"{_RESULTS.get(code, 'an unknown error')} (Ruckig result {code})"
+    return ""
 
 
 def profile_segment(trajectory: ruckig.Trajectory) -> PolynomialSegment:
@@ -115,13 +154,11 @@ def _plan(
             inp.max_velocity = [scale * v for v in limits.velocity]
             inp.max_acceleration = [scale * a for a in limits.acceleration]
             inp.max_jerk = [scale * j for j in limits.jerk]
-            try:
-                otg.calculate(inp, out)
+            reason = _calculate(otg, inp, out)
+            if not reason:
                 break
-            except ruckig.RuckigError as exc:
-                if attempt == len(_LIMIT_SCALES) - 1:
-                    reason = next(line for line in str(exc).splitlines() if line.strip())
-                    raise TrajectoryError(f"Ruckig cannot plan segment {k + 1}: {reason}") from None
+            if attempt == len(_LIMIT_SCALES) - 1:
+                raise TrajectoryError(f"Ruckig cannot plan segment {k + 1}: {reason}")
         plans.append(out)
         # Start the next segment where this one really ends (Ruckig meets a target to
         # ~1e-8 rad), so that the positions are exactly continuous.
@@ -182,14 +219,23 @@ def ruckig_trajectory(
             and ``stretch`` is false (names segment, joint and the time needed).
         LimitViolationError: A joint leaves its range.
         UnreachablePoseError: A pose has no IK solution (names the pose).
-        InvalidInputError: Malformed waypoints or durations.
+        InvalidInputError: Malformed waypoints, durations or options, or limits
+            so low that a segment needs more than 3600 s.
+        TrajectoryError: Ruckig cannot plan a segment (its reason in words).
     """
+    limits, stretch, geometry = check_options(limits, stretch, geometry)
+    pass_through = flag(pass_through, "pass_through")
     wp = resolve_waypoints(waypoints, geometry)
-    given = given_durations(durations, wp.q.shape[0] - 1)
+    given = given_durations(durations, wp.q.shape[0] - 1, wp.names)
     via = np.zeros_like(wp.q)
     plans = _plan(wp.q, via, limits, given)
     if given is None:
-        require_motion(np.array([p.duration for p in plans]), wp.names)
+        shortest = np.array([p.duration for p in plans])
+        require_motion(shortest, wp.names)
+        check_planned(shortest, wp.names)
+        if (shortest < MIN_SEGMENT_S).any():  # tiny motions, huge limits: segments of 1 ms
+            given = np.maximum(shortest, MIN_SEGMENT_S)
+            plans = _plan(wp.q, via, limits, given)
     if pass_through and wp.q.shape[0] > 2:
         times = given if given is not None else np.array([p.duration for p in plans])
         via = _via_velocities(wp, times, limits)
@@ -212,6 +258,7 @@ def ruckig_trajectory(
                     given=float(want),
                     required=float(plan.duration),
                 )
+    check_planned(np.array([p.duration for p in plans]), wp.names)
     segments = tuple(profile_segment(p) for p in plans)
     traj = Trajectory(TrajectoryKind.RUCKIG, segments, wp, limits)
     check_trajectory(traj, geometry)

@@ -16,7 +16,16 @@ from typing import NamedTuple, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.bounds import (
+    MAX_RATE_HZ,
+    MAX_SAMPLES,
+    MAX_SEGMENT_S,
+    MIN_RATE_HZ,
+    MIN_SEGMENT_S,
+    check_count,
+)
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.traj.inputs import instance, number_in_range, real_array
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import JointLimits
 from lynxsim.traj.waypoints import Waypoints
@@ -84,6 +93,24 @@ def _derivative_coefficients(coefficients: FloatArray, order: int) -> FloatArray
     return coefficients[:, order:] * factor[None, :, None]
 
 
+def _check_magnitude(derivatives: tuple[FloatArray, ...], lengths: FloatArray) -> None:
+    """Raise if a piecewise polynomial or a derivative can overflow float64 on its pieces.
+
+    ``sum_k |c_k| max(1, h)^k`` bounds every partial sum of the evaluation
+    (Horner's scheme and the powers of the Vandermonde matrix) on a piece of
+    length ``h``.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        for c in derivatives:
+            powers = np.maximum(lengths, 1.0)[:, None] ** np.arange(c.shape[1])  # (P, D + 1)
+            bound = np.einsum("pkj,pk->pj", np.abs(c), powers)
+            if not np.isfinite(bound).all():
+                raise InvalidInputError(
+                    "coefficients too large: the polynomial or its derivatives overflow "
+                    "float64 on the segment's pieces"
+                )
+
+
 @dataclass(frozen=True)
 class PolynomialSegment:
     """A piecewise polynomial in local time, one polynomial per joint and piece.
@@ -93,6 +120,12 @@ class PolynomialSegment:
             increasing.
         coefficients: Shape (P, D + 1, 5): for piece ``i`` and joint ``j``,
             ``q_j(tau) = sum_k coefficients[i, k, j] * (tau - breaks[i])**k`` [rad/s^k].
+
+    Raises:
+        InvalidInputError: Not real numbers, wrong shapes, breaks that do not
+            increase from 0, a duration outside [0.001, 3600] s, or a polynomial
+            whose values overflow float64 on its pieces.
+        NonFiniteInputError: A value is NaN or infinite.
     """
 
     breaks: FloatArray
@@ -101,16 +134,23 @@ class PolynomialSegment:
     _by_power: tuple[FloatArray, ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        breaks = np.array(self.breaks, dtype=float)
-        coefficients = np.array(self.coefficients, dtype=float)
+        breaks = np.array(real_array(self.breaks, "breaks"))  # copies: frozen below
+        coefficients = np.array(real_array(self.coefficients, "coefficients"))
         pieces = breaks.size - 1
-        if breaks.ndim != 1 or pieces < 1 or breaks[0] != 0.0 or (np.diff(breaks) <= 0).any():
+        if breaks.ndim != 1 or pieces < 1:
+            raise InvalidInputError(f"breaks must have shape (P + 1,), P >= 1, got {breaks.shape}")
+        if not (np.isfinite(breaks).all() and np.isfinite(coefficients).all()):
+            raise NonFiniteInputError("breaks and coefficients must be finite")
+        if breaks[0] != 0.0 or (np.diff(breaks) <= 0).any():
             raise InvalidInputError(f"breaks must increase from 0, got {breaks.tolist()}")
+        number_in_range(breaks[-1], "segment duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
         if coefficients.ndim != 3 or coefficients.shape[0] != pieces or coefficients.shape[2] != 5:
             raise InvalidInputError(
                 f"coefficients must have shape ({pieces}, D + 1, 5), got {coefficients.shape}"
             )
-        derivatives = tuple(_derivative_coefficients(coefficients, r) for r in range(4))
+        with np.errstate(over="ignore"):  # inf: refused by the magnitude check
+            derivatives = tuple(_derivative_coefficients(coefficients, r) for r in range(4))
+        _check_magnitude(derivatives, np.diff(breaks))
         # (power, piece, joint) copies: contiguous rows for the piecewise Horner scheme.
         by_power = tuple(np.ascontiguousarray(c.transpose(1, 0, 2)) for c in derivatives)
         for arr in (breaks, coefficients, *derivatives, *by_power):
@@ -167,6 +207,20 @@ class Trajectory:
     _times: FloatArray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        try:
+            object.__setattr__(self, "kind", TrajectoryKind(self.kind))
+        except ValueError:
+            raise InvalidInputError(f"unknown trajectory kind {self.kind!r}") from None
+        instance(self.waypoints, Waypoints, "waypoints")
+        instance(self.limits, JointLimits, "limits")
+        instance(self.segments, tuple, "segments")
+        for k, segment in enumerate(self.segments):
+            duration = getattr(segment, "duration", None)
+            if not callable(getattr(segment, "evaluate", None)) or duration is None:
+                raise InvalidInputError(f"segment {k + 1} is not a Segment: {segment!r}")
+            number_in_range(
+                duration, f"segment {k + 1} duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s"
+            )
         if len(self.segments) != len(self.waypoints.q) - 1:
             raise InvalidInputError(
                 f"{len(self.waypoints.q)} waypoints need {len(self.waypoints.q) - 1} segments, "
@@ -203,9 +257,15 @@ class Trajectory:
 
         Raises:
             NonFiniteInputError: A time is NaN or infinite.
-            InvalidInputError: A time lies outside the trajectory.
+            InvalidInputError: A time lies outside the trajectory, ``t`` is not
+                real numbers, or it holds more than
+                :data:`~lynxsim.bounds.MAX_SAMPLES` times.
         """
-        t_arr = np.asarray(t, dtype=float)
+        t_arr = real_array(t, "sample times")
+        if t_arr.size > MAX_SAMPLES:
+            raise InvalidInputError(
+                f"at most {MAX_SAMPLES:,} sample times per call, got {t_arr.size:,}"
+            )
         flat = t_arr.ravel()
         if not np.isfinite(flat).all():
             raise NonFiniteInputError("sample times must be finite")
@@ -240,28 +300,40 @@ class Trajectory:
         The grid starts at 0 and ends at the last multiple of the period within
         the duration (the end itself only when the duration is such a multiple).
 
+        Args:
+            rate_hz: Sampling rate, :data:`~lynxsim.bounds.MIN_RATE_HZ` to
+                :data:`~lynxsim.bounds.MAX_RATE_HZ` [Hz].
+
         Raises:
-            InvalidInputError: ``rate_hz`` is not a positive finite number.
+            InvalidInputError: ``rate_hz`` is not a number in that range, or the
+                grid would hold more than :data:`~lynxsim.bounds.MAX_SAMPLES` times.
+            NonFiniteInputError: ``rate_hz`` is NaN or infinite.
         """
-        if not (math.isfinite(rate_hz) and rate_hz > 0.0):
-            raise InvalidInputError(f"rate_hz must be positive and finite, got {rate_hz}")
-        n = math.floor(self.duration * rate_hz * (1.0 + TIME_TOL)) + 1
-        return np.minimum(np.arange(n) / rate_hz, self.duration)
+        rate = number_in_range(rate_hz, "rate_hz", MIN_RATE_HZ, MAX_RATE_HZ, "Hz")
+        n = math.floor(self.duration * rate * (1.0 + TIME_TOL)) + 1
+        if n > MAX_SAMPLES:
+            raise InvalidInputError(
+                f"{self.duration:.6g} s at {rate:g} Hz is {n:,} samples, more than "
+                f"{MAX_SAMPLES:,}: lower rate_hz"
+            )
+        return np.minimum(np.arange(n) / rate, self.duration)
 
     def times_per_segment(self, steps: int) -> FloatArray:
         """The report's grid: ``steps`` equal steps per segment plus the end, shape (N' ,) [s].
 
         Args:
-            steps: Steps per segment (the report uses 10).
+            steps: Steps per segment (the report uses 10), a Python or NumPy integer.
 
         Returns:
             ``steps * (N - 1) + 1`` increasing times, waypoint times included.
 
         Raises:
-            InvalidInputError: ``steps`` is not a positive integer.
+            InvalidInputError: ``steps`` is not a positive integer, or the grid
+                would hold more than :data:`~lynxsim.bounds.MAX_SAMPLES` times.
         """
-        if isinstance(steps, bool) or not isinstance(steps, int) or steps < 1:
-            raise InvalidInputError(f"steps must be a positive integer, got {steps!r}")
+        if isinstance(steps, bool) or not isinstance(steps, int | np.integer):
+            raise InvalidInputError(f"steps must be an integer, got {steps!r}")
+        steps = check_count(int(steps), "steps", 1, (MAX_SAMPLES - 1) // len(self.segments))
         frac = np.arange(steps) / steps
         starts, durations = self._times[:-1], self.segment_durations
         grid = (starts[:, None] + durations[:, None] * frac[None, :]).ravel()

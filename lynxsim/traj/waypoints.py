@@ -17,25 +17,56 @@ import numpy.typing as npt
 
 from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry, IKStatus, ik, tool_pose
+from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES
 from lynxsim.errors import (
     InvalidInputError,
     JointRangeError,
     NonFiniteInputError,
     OutOfReachError,
 )
+from lynxsim.traj.check import CHECK_POINTS
+from lynxsim.traj.inputs import finite_array, instance, real_array, real_number
 
-__all__ = ["ArmPose", "JointPose", "Waypoints", "WaypointsLike", "resolve_waypoints"]
+__all__ = [
+    "MAX_WAYPOINTS",
+    "ArmPose",
+    "JointPose",
+    "Waypoints",
+    "WaypointsLike",
+    "check_geometry",
+    "resolve_waypoints",
+]
 
 FloatArray = npt.NDArray[np.float64]
 
+MAX_WAYPOINTS = 1 + MAX_SAMPLES // CHECK_POINTS
+"""Most waypoints of one trajectory: the check evaluates ``CHECK_POINTS`` samples per
+segment, at most :data:`~lynxsim.bounds.MAX_SAMPLES` in all (9,757 waypoints)."""
 
-def _floats(values: npt.ArrayLike, n: int, what: str) -> tuple[float, ...]:
-    arr = np.asarray(values, dtype=float)
+
+def _floats(values: object, n: int, what: str) -> tuple[float, ...]:
+    arr = finite_array(values, what)
     if arr.shape != (n,):
         raise InvalidInputError(f"{what} must have shape ({n},), got {arr.shape}")
-    if not np.isfinite(arr).all():
-        raise NonFiniteInputError(f"{what} must be finite, got {arr.tolist()}")
     return tuple(float(v) for v in arr)
+
+
+def _angle(value: object, what: str) -> float:
+    v = real_number(value, what)
+    if not math.isfinite(v):
+        raise NonFiniteInputError(f"{what} must be finite, got {v!r}")
+    return v
+
+
+def _name(value: object) -> str:
+    if not isinstance(value, str):
+        raise InvalidInputError(f"a waypoint name must be a string, got {value!r}")
+    return value
+
+
+def check_geometry(geometry: object) -> ArmGeometry:
+    """``geometry`` if it is an :class:`~lynxsim.arm.ArmGeometry`, else raise InvalidInputError."""
+    return instance(geometry, ArmGeometry, "geometry")
 
 
 @dataclass(frozen=True)
@@ -48,6 +79,12 @@ class ArmPose:
         roll: Wrist roll ``q5`` [rad]; ``None`` keeps the previous pose's roll
             (0 for the first pose).
         name: Label used in messages and plots (default ``P1``, ``P2``, ...).
+
+    Raises:
+        InvalidInputError: A value is not a real number, the position has not
+            three of them or a coordinate exceeds
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, or the name is not a string.
+        NonFiniteInputError: A value is NaN or infinite.
     """
 
     position: tuple[float, float, float]
@@ -56,12 +93,17 @@ class ArmPose:
     name: str = ""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "position", _floats(self.position, 3, "pose position"))
-        (pitch,) = _floats([self.pitch], 1, "pose pitch")
-        object.__setattr__(self, "pitch", pitch)
+        position = _floats(self.position, 3, "pose position")
+        if max(abs(v) for v in position) > MAX_COORDINATE_M:
+            raise InvalidInputError(
+                f"pose position coordinates must be within ±{MAX_COORDINATE_M:g} m "
+                f"(the arm reaches under 1 m), got {position} m"
+            )
+        object.__setattr__(self, "position", position)
+        object.__setattr__(self, "pitch", _angle(self.pitch, "pose pitch"))
         if self.roll is not None:
-            (roll,) = _floats([self.roll], 1, "pose roll")
-            object.__setattr__(self, "roll", roll)
+            object.__setattr__(self, "roll", _angle(self.roll, "pose roll"))
+        _name(self.name)
 
     def describe(self) -> str:
         """The pose in the report's units, e.g. ``P3 (x 250, y 0, z 300 mm, pitch 0 deg)``."""
@@ -87,6 +129,7 @@ class JointPose:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "q", _floats(self.q, 5, "joint pose q"))
+        _name(self.name)
 
 
 WaypointsLike = Sequence[ArmPose | JointPose] | npt.ArrayLike
@@ -106,6 +149,22 @@ class Waypoints:
     q: FloatArray
     poses: tuple[ArmPose, ...]
 
+    def __post_init__(self) -> None:
+        q = np.array(finite_array(self.q, "waypoint joints"))  # a copy: frozen below
+        if q.ndim != 2 or q.shape[1] != 5 or q.shape[0] < 2:
+            raise InvalidInputError(
+                f"waypoint joints must have shape (N, 5), N >= 2, got {q.shape}"
+            )
+        poses = self.poses
+        if not (
+            isinstance(poses, tuple)
+            and len(poses) == q.shape[0]
+            and all(isinstance(p, ArmPose) for p in poses)
+        ):
+            raise InvalidInputError(f"poses must be a tuple of {q.shape[0]} ArmPose")
+        q.setflags(write=False)
+        object.__setattr__(self, "q", q)
+
     @property
     def names(self) -> tuple[str, ...]:
         """Waypoint labels."""
@@ -118,11 +177,11 @@ def _check_range(q: FloatArray, name: str, geometry: ArmGeometry) -> None:
     excess = np.maximum(below, above)
     j = int(np.argmax(excess))
     if excess[j] > LIMIT_TOL:
-        lo, hi = np.degrees(geometry.lower[j]), np.degrees(geometry.upper[j])
-        raise JointRangeError(
+        lo, hi = math.degrees(geometry.lower[j]), math.degrees(geometry.upper[j])
+        raise JointRangeError(  # math.degrees: inf for a joint beyond 1e306 rad, no warning
             f"waypoint {name}: joint {j + 1} ({geometry.joint_names[j]}) = "
-            f"{np.degrees(q[j]):.4g} deg is outside its range [{lo:.4g}, {hi:.4g}] deg "
-            f"by {np.degrees(excess[j]):.4g} deg",
+            f"{math.degrees(q[j]):.4g} deg is outside its range [{lo:.4g}, {hi:.4g}] deg "
+            f"by {math.degrees(excess[j]):.4g} deg",
             joint=j + 1,
         )
 
@@ -144,6 +203,11 @@ def _pose_of(q: FloatArray, name: str, geometry: ArmGeometry) -> ArmPose:
     return ArmPose(tuple(pose.position), float(pose.pitch), float(pose.roll), name)
 
 
+def _check_count(n: int) -> None:
+    if not 2 <= n <= MAX_WAYPOINTS:
+        raise InvalidInputError(f"a trajectory needs 2 to {MAX_WAYPOINTS:,} waypoints, got {n:,}")
+
+
 def resolve_waypoints(waypoints: WaypointsLike, geometry: ArmGeometry = LYNX_ARM) -> Waypoints:
     """Turn poses or joint vectors into joints, checking reach and joint ranges.
 
@@ -160,26 +224,33 @@ def resolve_waypoints(waypoints: WaypointsLike, geometry: ArmGeometry = LYNX_ARM
     Raises:
         OutOfReachError: A pose's wrist point is out of reach (names the pose).
         JointRangeError: A pose needs, or a joint vector has, a joint out of range.
-        InvalidInputError: Fewer than two waypoints, or a wrong shape.
+        InvalidInputError: Fewer than two or more than :data:`MAX_WAYPOINTS`
+            waypoints, a wrong shape, values that are not real numbers, or a
+            geometry that is not an :class:`~lynxsim.arm.ArmGeometry`.
         NonFiniteInputError: A value is NaN or infinite.
     """
+    geometry = check_geometry(geometry)
     items: list[ArmPose | JointPose]
-    if isinstance(waypoints, Sequence) and all(
-        isinstance(w, ArmPose | JointPose) for w in waypoints
+    if (
+        isinstance(waypoints, Sequence)
+        and not isinstance(waypoints, str | bytes)
+        and all(isinstance(w, ArmPose | JointPose) for w in waypoints)
     ):
         items = [w for w in waypoints if isinstance(w, ArmPose | JointPose)]
     else:
         try:
-            arr = np.asarray(waypoints, dtype=float)
-        except (TypeError, ValueError):
+            arr = real_array(waypoints, "joint waypoints")
+        except InvalidInputError as exc:
             raise InvalidInputError(
-                "waypoints must be ArmPose/JointPose objects or joints of shape (N, 5)"
+                f"waypoints must be ArmPose/JointPose objects or joints of shape (N, 5): {exc}"
             ) from None
         if arr.ndim != 2 or arr.shape[1] != 5:
             raise InvalidInputError(f"joint waypoints must have shape (N, 5), got {arr.shape}")
+        _check_count(arr.shape[0])
+        if not np.isfinite(arr).all():
+            raise NonFiniteInputError("joint waypoints must be finite")
         items = [JointPose(tuple(row)) for row in arr]
-    if len(items) < 2:
-        raise InvalidInputError(f"a trajectory needs at least two waypoints, got {len(items)}")
+    _check_count(len(items))
     qs: list[FloatArray] = []
     poses: list[ArmPose] = []
     for i, item in enumerate(items):

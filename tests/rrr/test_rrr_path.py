@@ -3,15 +3,23 @@
 from __future__ import annotations
 
 import math
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from lynxsim.errors import InvalidInputError, SegmentDurationError, UnreachablePlatformPoseError
+from lynxsim.bounds import MIN_SEGMENT_S
+from lynxsim.errors import (
+    InvalidInputError,
+    NonFiniteInputError,
+    SegmentDurationError,
+    UnreachablePlatformPoseError,
+)
 from lynxsim.rrr import RRR_ROBOT, ik
 from lynxsim.rrr.path import (
     DEFAULT_PLATFORM_LIMITS,
+    PlatformLimits,
     PlatformPathError,
     actuated_path,
     actuated_window,
@@ -123,7 +131,10 @@ def test_short_durations_raise_unless_stretched():
         ({"waypoints": np.zeros((1, 3))}, r"shape \(N, 3\) with N >= 2"),
         ({"waypoints": np.array([HOME, HOME])}, r"'P1' and 'P2' are the same pose"),
         ({"waypoints": np.array([HOME, FIGURE20_A]), "durations": [1.0, 1.0]}, r"1 segment"),
-        ({"waypoints": np.array([HOME, FIGURE20_A]), "durations": -1.0}, r"must be positive"),
+        (
+            {"waypoints": np.array([HOME, FIGURE20_A]), "durations": -1.0},
+            r"durations must be between 0\.001 and 3600 s, got -1 s for segment 1 \(P1 -> P2\)",
+        ),
     ],
     ids=["one-pose", "repeated", "count", "negative"],
 )
@@ -147,12 +158,21 @@ def test_actuated_angles_are_the_ik_of_the_mode_continuous_and_in_range():
 
 
 def test_path_out_of_the_workspace_is_a_clear_error():
-    pose = platform_path(np.array([HOME, FIGURE20_E]), 2.0)
+    # Figure 20 (e) is out of reach: the straight line from home leaves the workspace.
     t = np.linspace(0.0, 2.0, 201)
+    poses = HOME + np.outer(t / 2.0, np.subtract(FIGURE20_E, HOME))
     with pytest.raises(
         UnreachablePlatformPoseError, match=r"leaves the workspace at t = 1\.\d+ s"
     ) as e:
-        actuated_path(pose.sample(t).pose, 7, times=t)
+        actuated_path(poses, 7, times=t)
+    assert e.value.legs == (1,)
+
+
+def test_unreachable_waypoint_is_refused_before_timing():
+    with pytest.raises(
+        UnreachablePlatformPoseError, match=r"^waypoint 'P2': platform pose .* is unreachable"
+    ) as e:
+        platform_path(np.array([HOME, FIGURE20_E]), 2.0)
     assert e.value.legs == (1,)
 
 
@@ -179,3 +199,87 @@ def test_rrr_tasks_load_and_plan_and_other_types_are_refused():
         path_from_task(tour, "line")
     with pytest.raises(InvalidInputError, match=r"is for robot 'arm'"):
         path_from_task(load_task(ROOT / "tasks" / "pick_and_place.toml"))
+
+
+# Fuzz findings: platform_path returned NaN or infinite durations, or timed an
+# unreachable pose 1e9 mm away into a path whose sampling asked for 46 GiB.
+
+QUICK_S = 0.5
+"""A refused path is refused at once, before any timing or sampling [s]."""
+
+
+@pytest.mark.parametrize("through", [False, True], ids=["segments", "spline"])
+def test_far_or_unreachable_waypoints_are_refused_quickly(through):
+    start = time.perf_counter()
+    with pytest.raises(InvalidInputError, match=r"waypoint 2: x and y must be within ±10 m"):
+        platform_path(np.array([HOME, [1e6, 0.0, 0.0]]), through=through)  # x = 1e9 mm
+    with pytest.raises(UnreachablePlatformPoseError, match=r"^waypoint 'P2': platform pose"):
+        platform_path(np.array([HOME, [2.0, 0.0, 0.0], HOME]), through=through)
+    assert time.perf_counter() - start < QUICK_S
+
+
+@pytest.mark.parametrize("through", [False, True], ids=["segments", "spline"])
+@pytest.mark.parametrize("limit", [5e-324, 1e-300, 1e-6], ids=str)
+def test_limits_too_low_for_an_hour_raise_instead_of_timing(through, limit):
+    limits = PlatformLimits(limit, limit, limit, limit)
+    with pytest.raises(InvalidInputError, match=r"needs .* s within the platform limits, more"):
+        platform_path(_tour_poses(), through=through, limits=limits)
+    with pytest.raises(InvalidInputError, match=r"within the platform limits, more"):
+        platform_path(_tour_poses(), 1.0, through=through, limits=limits, stretch=True)
+
+
+@pytest.mark.parametrize("through", [False, True], ids=["segments", "spline"])
+def test_huge_limits_give_segments_of_the_shortest_duration(through):
+    path = platform_path(_tour_poses(), through=through, limits=PlatformLimits(*[1e300] * 4))
+    assert_close(path.durations, np.full(4, MIN_SEGMENT_S), atol=1e-15)
+    assert np.isfinite(path.sample(np.linspace(0.0, path.duration, 11)).pose).all()
+
+
+@pytest.mark.parametrize("duration", [5e-324, 1e-300, 1e-4, 3600.5, 1e60, 1e300], ids=str)
+@pytest.mark.parametrize("through", [False, True], ids=["segments", "spline"])
+def test_durations_outside_the_range_are_refused(duration, through):
+    with pytest.raises(InvalidInputError, match=r"durations must be between 0\.001 and 3600 s"):
+        platform_path(_tour_poses(), duration, through=through, stretch=True)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"waypoints": "home"}, r"waypoints must be real numbers, got 'home'"),
+        ({"waypoints": [[0.2, 0.1, 0.0], [0.3]]}, r"rectangular array"),
+        ({"waypoints": np.array([HOME, FIGURE20_A]) + 0j}, r"complex numbers"),
+        ({"waypoints": [[0.25, 0.15, 0.0], [0.3, 10**400, 0.0]]}, r"integers beyond float64"),
+        ({"durations": "1"}, r"segment durations must be real numbers"),
+        ({"durations": True}, r"segment durations must be real numbers, got booleans"),
+        ({"names": "ab"}, r"names must be a sequence of strings"),
+        ({"through": "yes"}, r"through must be True or False"),
+        ({"limits": None}, r"limits must be of type PlatformLimits"),
+        ({"geometry": 1}, r"geometry must be of type RRRGeometry"),
+    ],
+    ids=[
+        "str",
+        "ragged",
+        "complex",
+        "10**400",
+        "duration-str",
+        "bool",
+        "names",
+        "flag",
+        "limits",
+        "geometry",
+    ],
+)
+def test_arguments_of_the_wrong_type_are_typed_errors(kwargs, message):
+    args = {"waypoints": np.array([HOME, FIGURE20_A])} | kwargs
+    with pytest.raises(InvalidInputError, match=message):
+        platform_path(**args)
+
+
+def test_platform_limits_and_samples_refuse_non_numbers():
+    with pytest.raises(InvalidInputError, match="platform limit speed must be real numbers"):
+        PlatformLimits("fast")  # type: ignore[arg-type]
+    path = platform_path(np.array([HOME, FIGURE20_A]), 2.0)
+    with pytest.raises(NonFiniteInputError, match="sample times must be finite"):
+        path.sample([0.0, math.nan])
+    with pytest.raises(InvalidInputError, match=r"sample times must have shape \(T,\)"):
+        path.sample(np.zeros((2, 2)))

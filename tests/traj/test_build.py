@@ -17,7 +17,7 @@ from lynxsim.plots.obstacles import inside_any
 from lynxsim.reproduce.arm_tables import TABLE4
 from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.tasks import PlanarPose, Task, load_task
-from lynxsim.traj import ArmPose, TrajectoryKind, generate
+from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
 from tests.helpers import assert_close
 
 TASKS = Path(__file__).resolve().parents[2] / "tasks"
@@ -44,7 +44,7 @@ def test_pick_and_place_defaults_to_the_reports_quintic_at_1_s(pick_and_place):
     assert traj.waypoints.names == ("P1", "P2", "P3", "P4", "P5")
 
 
-@pytest.mark.parametrize("kind", list(TrajectoryKind), ids=lambda k: k.value)
+@pytest.mark.parametrize("kind", WAYPOINT_KINDS, ids=lambda k: k.value)
 def test_every_type_builds_for_both_report_tasks(kind, pick_and_place, obstacle_avoidance):
     for task in (pick_and_place, obstacle_avoidance):
         traj = build_trajectory(task, kind)
@@ -55,7 +55,7 @@ def test_every_type_builds_for_both_report_tasks(kind, pick_and_place, obstacle_
         assert_close(tool, targets, atol=1e-8)
 
 
-@pytest.mark.parametrize("kind", list(TrajectoryKind), ids=lambda k: k.value)
+@pytest.mark.parametrize("kind", WAYPOINT_KINDS, ids=lambda k: k.value)
 def test_plain_task_crosses_the_obstacle_in_every_type(kind, pick_and_place):
     # The report: "the plain task passes through the obstacle between P2 and P3".
     traj = build_trajectory(pick_and_place, kind)
