@@ -15,7 +15,6 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from lynxsim.arm import tool_pose
-from lynxsim.arm.task import build_trajectory
 from lynxsim.bounds import MAX_RATE_HZ, MAX_SEGMENT_S, MIN_RATE_HZ, MIN_SEGMENT_S
 from lynxsim.cli.context import about_task
 from lynxsim.cli.units import bounded_float
@@ -92,11 +91,12 @@ def _apply_overrides(task: Task, args: argparse.Namespace) -> Task:
 
 def _comparison(task: Task, dest: Path) -> None:
     from lynxsim.plots.trajectory import plot_tool_paths
+    from lynxsim.sim.arm.planning import task_trajectory
 
     trajectories = {}
     for kind in TrajectoryKind:
         try:
-            trajectories[kind.value] = build_trajectory(task, kind)
+            trajectories[kind.value] = task_trajectory(task, kind)
         except LynxsimError as exc:
             print(f"lynxsim: note: no {kind.value} path in the comparison: {exc}", file=sys.stderr)
     plot_tool_paths(
@@ -120,10 +120,11 @@ def _traj(args: argparse.Namespace) -> int:
     if args.task is None:
         raise InvalidInputError("give a task file (e.g. tasks/pick_and_place.toml), or --list")
     from lynxsim.plots.trajectory import plot_joint_profiles
+    from lynxsim.sim.arm.planning import task_trajectory
 
     task = _apply_overrides(load_task(args.task), args)
     with about_task(args.task):
-        traj = build_trajectory(task, args.type)
+        traj = task_trajectory(task, args.type)
         t = traj.times_at_rate(args.rate_hz)
     out: Path = args.out_dir
     samples = output_path(out, task.name, traj.kind.value, suffix=f".{args.format}")

@@ -12,10 +12,10 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LynxsimError
 from lynxsim.fileio import file_stem
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
+from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
@@ -43,7 +43,7 @@ def arm_runs(tasks: list[Task], skipped: Callable[[str], None]) -> Iterator[Demo
     for task in tasks:
         for kind in TrajectoryKind:
             try:
-                yield DemoRun(task, build_trajectory(task, kind))
+                yield DemoRun(task, task_trajectory(task, kind))
             except LynxsimError as exc:
                 skipped(f"{task.name} {kind.value}: {exc}")
 

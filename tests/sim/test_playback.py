@@ -18,7 +18,7 @@ from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.rollout import rollout
 from lynxsim.tasks import load_task
-from lynxsim.traj import ArmPose, TrajectoryKind, generate
+from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
 
 ROOT = Path(__file__).resolve().parents[2]
 PICK_AND_PLACE = ROOT / "tasks" / "pick_and_place.toml"
@@ -52,7 +52,7 @@ def test_quintic_pick_and_place_tracks_within_bounds(pick_and_place):
     assert report.obstacle is None
 
 
-@pytest.mark.parametrize("kind", list(TrajectoryKind), ids=[k.value for k in TrajectoryKind])
+@pytest.mark.parametrize("kind", WAYPOINT_KINDS, ids=[k.value for k in WAYPOINT_KINDS])
 def test_plain_task_hits_the_obstacle_between_p2_and_p3(pick_and_place, kind):
     trajectory = build_trajectory(pick_and_place, kind)
     report = play_arm(load_arm_scene(NO_CUBE), trajectory, task="pick_and_place").report

@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
@@ -62,7 +62,7 @@ class ArmAdapter:
 
     def prepare(self, task: Task, kind: str | None) -> ArmRun:
         """Build the task's trajectory of type ``kind`` (None: the task's own)."""
-        return ArmRun(task, build_trajectory(task, kind))
+        return ArmRun(task, task_trajectory(task, kind))
 
 
 ADAPTER = ArmAdapter()
