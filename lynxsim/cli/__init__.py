@@ -16,7 +16,7 @@ from collections.abc import Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from lynxsim.cli import arm, demo, env, play, rrr, traj
+from lynxsim.cli import arm, demo, env, plan, play, rrr, traj
 from lynxsim.errors import LynxsimError
 
 __all__ = ["build_parser", "main"]
@@ -63,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
         "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
     )
     sub = parser.add_subparsers(required=True, parser_class=_OneLineParser)
-    for module in (arm, traj, play, rrr, demo, env):
+    for module in (arm, traj, plan, play, rrr, demo, env):
         module.register(sub)
     return parser
 

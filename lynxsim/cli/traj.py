@@ -23,7 +23,7 @@ from lynxsim.fileio import atomic_path, check_destination, output_path
 from lynxsim.tasks import Task, load_task
 from lynxsim.traj import Trajectory, TrajectoryKind
 
-__all__ = ["register"]
+__all__ = ["register", "write_samples"]
 
 _ORDERS = (("q", ""), ("qd", "_s"), ("qdd", "_s2"), ("qddd", "_s3"))
 
@@ -74,6 +74,15 @@ def _write_npz(path: Path, samples: list[_Samples], traj: Trajectory) -> None:
     arrays["kind"] = np.array(traj.kind.value)
     with atomic_path(path) as tmp:
         np.savez(tmp, **arrays)
+
+
+def write_samples(traj: Trajectory, t: np.ndarray, dest: Path, *, si: bool) -> None:
+    """Write a trajectory's samples at times ``t`` [s] as CSV or NPZ (by ``dest``'s suffix)."""
+    data = _samples(traj, t, si)
+    if dest.suffix == ".csv":
+        _write_csv(dest, data)
+    else:
+        _write_npz(dest, data, traj)
 
 
 def _apply_overrides(task: Task, args: argparse.Namespace) -> Task:
@@ -132,11 +141,7 @@ def _traj(args: argparse.Namespace) -> int:
     paths = output_path(out, task.name, "paths", suffix=".png")
     for dest in (samples, joints, *(() if args.no_compare else (paths,))):
         check_destination(dest)
-    data = _samples(traj, t, args.si)
-    if args.format == "csv":
-        _write_csv(samples, data)
-    else:
-        _write_npz(samples, data, traj)
+    write_samples(traj, t, samples, si=args.si)
     plot_joint_profiles(
         traj, joints, title=f"{task.name}: {traj.kind.value} trajectory, {traj.duration:.3f} s"
     )
