@@ -399,6 +399,89 @@ class CollisionChecker:
             InvalidInputError: Wrong shape, or ``grasped`` without an attach point.
             NonFiniteInputError: A value is NaN or infinite.
         """
+        return self._check(self._states(q, grasped), grasped)
+
+    def min_clearance(
+        self, q: npt.ArrayLike, *, grasped: bool = False, cap: float | None = None
+    ) -> FloatArray:
+        """Smallest clearance to any obstacle of each joint vector; ``-inf`` on a hit.
+
+        What a planner asks: one number per vector, the minimum of
+        :meth:`check`'s clearances, exactly, for less work: the bounds of
+        :func:`clearances` for all vectors at once, then exact distances
+        (``mj_geomDistance``) over every (geom, obstacle) pair in the order of its
+        bound until the next bound exceeds the best distance found. An obstacle,
+        self or table contact reads as ``-inf``.
+
+        Args:
+            q: Joint vectors, (N, n) or (n,) [rad].
+            grasped: Whether the payload is held at the attach site.
+            cap: Clearances of ``cap`` or more read as ``cap`` [m] (default: the checker's).
+
+        Returns:
+            Shape (N,) [m].
+
+        Raises:
+            InvalidInputError: Wrong shape, ``grasped`` without an attach point, or
+                a cap that is not positive.
+            NonFiniteInputError: A value is NaN or infinite.
+        """
+        states = self._states(q, grasped)
+        limit = self._cap if cap is None else float(cap)
+        if not limit > 0.0:
+            raise InvalidInputError(f"cap must be positive, got {cap!r}")
+        m, d, g = self.model, self._data, self.groups
+        hits = self._obstacle_pairs | self._self_pairs | self._support_pairs
+        carried = np.flatnonzero(g.carried)
+        obstacles = g.obstacle_geoms
+        count = len(states)
+        out = np.full(count, limit)
+        xpos = np.empty((count, len(carried), 3))
+        for k in range(count):  # pass 1: contacts, and where every geom is
+            d.qpos[:] = states[k]
+            if grasped and self._attach is not None:
+                self._hold_payload(*self._attach)
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_collision(m, d)
+            ncon = int(d.ncon)
+            if ncon and any(
+                (g1, g2) in hits
+                for (g1, g2), dist in zip(
+                    d.contact.geom[:ncon].tolist(), d.contact.dist[:ncon].tolist()
+                )
+                if dist <= 0.0
+            ):
+                out[k] = -np.inf
+            xpos[k] = d.geom_xpos[carried]
+        if len(obstacles) == 0 or len(carried) == 0:
+            return out
+        if self._boxes is None:
+            self._boxes = obstacle_boxes(m, d, g)
+        centre, half = self._boxes
+        outside = np.abs(xpos[:, :, None, :] - centre[None, None]) - half[None, None]
+        bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (N, r, m)
+        bounds -= np.asarray(m.geom_rbound)[carried][None, :, None]
+        flat = bounds.reshape(count, -1)
+        order = np.argsort(flat, axis=1)
+        pairs = len(obstacles)
+        geoms, targets = carried.tolist(), obstacles.tolist()
+        for k in np.flatnonzero((out > -np.inf) & (flat.min(axis=1) < limit)).tolist():
+            d.qpos[:] = states[k]  # pass 2: exact distances of the pairs that may be near
+            if grasped and self._attach is not None:
+                self._hold_payload(*self._attach)
+            mujoco.mj_kinematics(m, d)
+            best, row = limit, flat[k].tolist()
+            for index in order[k].tolist():
+                if row[index] >= best:
+                    break
+                i, j = divmod(index, pairs)
+                dist = mujoco.mj_geomDistance(m, d, geoms[i], targets[j], best, self._fromto)
+                best = min(best, dist)
+            out[k] = best
+        return out
+
+    def _states(self, q: npt.ArrayLike, grasped: bool) -> FloatArray:
+        """Whole states of joint vectors, (N, nq), the rest from the base state."""
         q = np.asarray(q, dtype=float)
         n = self.n_joints
         if q.ndim not in (1, 2) or q.shape[-1] != n:
@@ -409,7 +492,7 @@ class CollisionChecker:
             raise InvalidInputError("grasped=True needs a payload attached to a site")
         states = np.repeat(self._base[None], len(q.reshape(-1, n)), axis=0)
         states[:, self._adr] = q.reshape(-1, n)
-        return self._check(states, grasped)
+        return states
 
     def check_states(self, qpos: npt.ArrayLike) -> CollisionCheck:
         """Check whole states (e.g. a playback log's ``qpos``), (N, nq)."""

@@ -13,11 +13,18 @@ from lynxsim.arm import LYNX_ARM
 from lynxsim.plan import StartInCollisionError, arm_lipschitz, joint_radii
 from lynxsim.scene import Cylinder
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
-from lynxsim.sim.arm.planning import DEFAULT_MARGIN_M, CheckerOracle, plan_task, task_trajectory
+from lynxsim.sim.arm.planning import (
+    DEFAULT_MARGIN_M,
+    PLANNING_CAP_M,
+    CheckerOracle,
+    plan_task,
+    task_trajectory,
+)
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
+from tests.helpers import assert_close
 
 TASKS = Path(__file__).resolve().parents[2] / "tasks"
 
@@ -70,19 +77,22 @@ def test_every_timed_sample_keeps_half_the_margin_by_the_checker():
     assert clearance.min() >= DEFAULT_MARGIN_M / 2
 
 
-def test_the_oracle_reads_hits_as_minus_infinity_and_agrees_with_the_checker():
-    model = load_arm_scene()
-    checker = arm_checker(model)
+@pytest.mark.parametrize("grasped", [False, True], ids=["free", "grasped"])
+def test_the_oracle_reads_hits_as_minus_infinity_and_agrees_with_the_checker(grasped):
+    task = load_task(TASKS / "three_obstacles.toml")
+    checker = arm_checker(load_arm_scene(task.scene))
     oracle = CheckerOracle(checker)
     rng = np.random.default_rng(0)
-    q = rng.uniform(LYNX_ARM.q_min, LYNX_ARM.q_max, size=(300, 5))
-    check = checker.check(q)
-    clearance = oracle.clearance(q, grasped=False)
+    q = rng.uniform(LYNX_ARM.q_min, LYNX_ARM.q_max, size=(400, 5))
+    check = checker.check(q, grasped=grasped)
+    clearance = oracle.clearance(q, grasped=grasped)
     hit = check.in_collision | check.support
     assert hit.any()
     assert (~hit).any()
     assert np.all(clearance[hit] == -np.inf)
-    assert np.array_equal(clearance[~hit], check.min_clearance_m[~hit])
+    expected = np.minimum(check.min_clearance_m[~hit], PLANNING_CAP_M)
+    assert (expected < PLANNING_CAP_M).sum() > 50  # exact values, not only the cap
+    assert_close(clearance[~hit], expected, atol=1e-12)
 
 
 def test_lipschitz_bound_holds_for_every_collision_geom_corner():

@@ -37,12 +37,14 @@ from lynxsim.traj import ArmPose, JointPose, Trajectory, TrajectoryKind
 from lynxsim.traj.build import parse_kind
 from lynxsim.traj.waypoints import resolve_waypoints
 
-__all__ = ["DEFAULT_MARGIN_M", "CheckerOracle", "plan_task", "task_trajectory"]
+__all__ = ["DEFAULT_MARGIN_M", "PLANNING_CAP_M", "CheckerOracle", "plan_task", "task_trajectory"]
 
 FloatArray = npt.NDArray[np.float64]
 
 DEFAULT_MARGIN_M = 0.01
 """Clearance every planned configuration keeps from every obstacle [m]."""
+PLANNING_CAP_M = 0.15
+"""Clearance cap of the planner's world [m] (see :class:`CheckerOracle`)."""
 
 
 class CheckerOracle:
@@ -54,18 +56,18 @@ class CheckerOracle:
 
     Args:
         checker: The arm's checker (:func:`~lynxsim.sim.arm.playback.arm_checker`).
+        cap_m: Clearances above this read as it [m]: the planner steps at most
+            ``cap / L`` along an edge per check, and far geoms cost nothing.
     """
 
-    def __init__(self, checker: CollisionChecker) -> None:
+    def __init__(self, checker: CollisionChecker, cap_m: float = PLANNING_CAP_M) -> None:
         self._checker = checker
+        self._cap = cap_m
         self.n_joints = checker.n_joints
 
     def clearance(self, q: FloatArray, *, grasped: bool) -> FloatArray:
-        """Smallest clearance of each joint vector, (N, n) -> (N,) [m]."""
-        check = self._checker.check(q, grasped=grasped)
-        hit = check.in_collision | check.support
-        out: FloatArray = np.where(hit, -np.inf, check.min_clearance_m)
-        return out
+        """Smallest clearance of each joint vector, (N, n) -> (N,) [m], at most the cap."""
+        return self._checker.min_clearance(q, grasped=grasped, cap=self._cap)
 
 
 def _goals(pose: ArmPose, resolved: FloatArray) -> FloatArray:
