@@ -60,6 +60,10 @@ FLAGS: dict[str, list[str]] = {
         "--type", "--out", "--no-video", "--no-obstacle", "--camera", "--mode", "--quality",
         "--fps", "--json", "--quiet",
     ],
+    "plan": [
+        "--planner", "--margin-mm", "--seed", "--time-limit-s", "--out-dir", "--format",
+        "--rate-hz", "--si", "--json", "--quiet",
+    ],
     "rrr fk": ["--si", "--json", "--mode"],
     "rrr ik": ["--si", "--json", "--mode"],
     "rrr workspace": ["--alpha-deg", "--out", "--resolution-mm", "--mode"],
@@ -121,7 +125,7 @@ def random_argv(rng: random.Random, sandbox: dict[str, Path]) -> list[str]:
         n = POSITIONALS[command] + rng.choice([0, 0, 0, -1, 1])
         argv += [rng.choice(NUMBERS[:12]) if rng.random() < 0.6 else rng.choice(pool)
                  for _ in range(max(n, 0))]  # fmt: skip
-    elif command in ("traj", "play"):
+    elif command in ("traj", "play", "plan"):
         task = rng.choice([sandbox["arm_task"]] * 4 + [sandbox["evil_task"], sandbox["rrr_task"]])
         argv.append(str(task) if rng.random() < 0.9 else rng.choice(paths))
     for _ in range(rng.randint(0, 4)):
@@ -134,6 +138,8 @@ def random_argv(rng: random.Random, sandbox: dict[str, Path]) -> list[str]:
         argv.append("--no-video")  # keep most runs short; some still film
     if command == "env":
         argv += ["--episodes", "1", "--quiet"] if "--episodes" not in argv else ["--quiet"]
+    if command == "plan" and "--time-limit-s" not in argv:
+        argv += ["--time-limit-s", "1"]  # a blocked plan fails in a second
     if command == "workspace" and "--samples" not in argv:
         argv += ["--samples", "2000"]
     return argv
