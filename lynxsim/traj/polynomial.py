@@ -175,13 +175,15 @@ def quintic_scaling(u: FloatArray) -> FloatArray:
         u: Normalised time in [0, 1], shape (n,).
 
     Returns:
-        ``s, ds/du, d2s/du2, d3s/du3``, shape (4, n).
+        ``s, ds/du, d2s/du2, d3s/du3``, shape (4, n); ``s`` clipped into [0, 1]
+        (rounding would otherwise overshoot 1 by an ulp just before ``u = 1``,
+        enough to cross a boundary such as the arm's base-axis fold).
     """
     u2 = u * u
     w = u - u2  # u (1 - u)
     return np.stack(
         [
-            u2 * u * (10.0 - 15.0 * u + 6.0 * u2),
+            np.clip(u2 * u * (10.0 - 15.0 * u + 6.0 * u2), 0.0, 1.0),
             30.0 * w * w,
             60.0 * w * (1.0 - 2.0 * u),
             60.0 - 360.0 * w,

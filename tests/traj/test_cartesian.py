@@ -2,17 +2,24 @@
 
 from __future__ import annotations
 
+import dataclasses
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from lynxsim.arm import LYNX_ARM, ik, tool_pose
+from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LimitViolationError, OutOfReachError, PathError
 from lynxsim.reproduce.arm_tables import TABLE4
-from lynxsim.traj import ArmPose, LineSegment, cartesian_line
+from lynxsim.tasks import load_task
+from lynxsim.traj import ArmPose, LineSegment, TrajectoryKind, cartesian_line
 from lynxsim.traj.cartesian import _branch
 from lynxsim.traj.polynomial import quintic_scaling
 from tests.helpers import assert_close
 from tests.traj.cases import LINE_LOWER, LINE_UPPER, as_poses, assert_straight
+
+TASKS = Path(__file__).resolve().parents[2] / "tasks"
 
 IK_TOL = 1e-12
 """Joints of the line's closed form against lynxsim.arm.ik [rad]."""
@@ -129,3 +136,18 @@ def test_given_durations_too_short_for_a_line():
     stretched = cartesian_line(REPORT_POSES, durations=1.0, stretch=True)
     assert (stretched.segment_durations >= 1.0).all()
     assert stretched.segment_durations[1] > 1.0
+
+
+def test_samples_an_ulp_before_a_pose_on_the_base_axis_fold_stay_finite():
+    """Samples just before P4 (heading -90 deg: the base angle's fold) are finite.
+
+    s(u) overshooting 1 by an ulp once flipped the fold there and gave infinite
+    joint rates (found by task-file fuzzing).
+    """
+    task = load_task(TASKS / "pick_and_place.toml")
+    task = dataclasses.replace(task, durations=(43.645903116306684,) * 4)
+    traj = build_trajectory(task, TrajectoryKind.LINE)
+    t = np.linspace(0.0, traj.duration, 101)
+    assert t[75] < traj.waypoint_times[3]  # 2.8e-14 s before P4
+    for values in traj.sample(t):
+        assert np.isfinite(values).all()
