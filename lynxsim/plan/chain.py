@@ -74,6 +74,7 @@ def plan_through(
     kind: TrajectoryKind = TrajectoryKind.RUCKIG,
     max_repairs: int = DEFAULT_MAX_REPAIRS,
     progress: ProgressCallback | None = None,
+    pose_names: Sequence[str] | None = None,
 ) -> PlannedMotion:
     """Plan every segment of a task in turn, then time the whole motion.
 
@@ -102,6 +103,8 @@ def plan_through(
         max_repairs: Timing repair rounds.
         progress: Called as each segment's planning, shortening and end begin,
             when timing starts and when all is done.
+        pose_names: Names of the start and the goals, for the trajectory's
+            waypoints (see :func:`~lynxsim.plan.timing.time_paths`).
 
     Returns:
         The :class:`PlannedMotion`.
@@ -166,6 +169,7 @@ def plan_through(
         kind=kind,
         labels=names,
         max_repairs=max_repairs,
+        pose_names=pose_names,
     )
     if progress is not None:
         progress(PlanProgress(count, count, "", "done", time.perf_counter() - started))

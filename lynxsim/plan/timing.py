@@ -40,7 +40,7 @@ from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.ruckig_profile import ruckig_trajectory
 from lynxsim.traj.trajectory import Segment, Trajectory
-from lynxsim.traj.waypoints import resolve_waypoints
+from lynxsim.traj.waypoints import JointPose, resolve_waypoints
 
 __all__ = ["DEFAULT_MAX_REPAIRS", "SPEED_SLACK", "TimedMotion", "TimedSegment", "time_paths"]
 
@@ -165,6 +165,7 @@ def time_paths(
     kind: TrajectoryKind = TrajectoryKind.RUCKIG,
     labels: Sequence[str] | None = None,
     max_repairs: int = DEFAULT_MAX_REPAIRS,
+    pose_names: Sequence[str] | None = None,
 ) -> TimedMotion:
     """Time planned paths with Ruckig and check the timed motion clear (see the module).
 
@@ -180,6 +181,9 @@ def time_paths(
         kind: The trajectory kind to label the result with.
         labels: Names of the segments for errors.
         max_repairs: Repair rounds before giving up.
+        pose_names: Names of the poses the paths join (one more than paths): the
+            trajectory's waypoints keep them, and the vertices between are named
+            ``v1``, ``v2``, ... (default: ``P1``, ``P2``, ... for every vertex).
 
     Returns:
         The :class:`TimedMotion`.
@@ -240,7 +244,32 @@ def time_paths(
                 work[i] = np.insert(work[i], np.array(insert) + 1, mids, axis=0)
                 stops[i] = np.insert(stops[i], np.array(insert) + 1, True)
                 midpoints[i] += len(insert)
-    return _assemble(work, stops, chunks, verdicts, midpoints, repairs, limits, geometry, kind)
+    return _assemble(
+        work, stops, chunks, verdicts, midpoints, repairs, limits, geometry, kind, pose_names
+    )
+
+
+def _vertex_names(
+    paths: Sequence[FloatArray], pose_names: Sequence[str] | None
+) -> list[str] | None:
+    """Pose names at the ends of the paths, ``v1``, ``v2``, ... between (None: no names)."""
+    if pose_names is None:
+        return None
+    if len(pose_names) != len(paths) + 1:
+        raise InvalidInputError(
+            f"{len(paths)} paths join {len(paths) + 1} poses, got {len(pose_names)} names"
+        )
+    names: list[str] = []
+    via = 0
+    for i, path in enumerate(paths):
+        for k in range(len(path) - 1):
+            if k == 0:
+                names.append(pose_names[i])
+            else:
+                via += 1
+                names.append(f"v{via}")
+    names.append(pose_names[-1])
+    return names
 
 
 def _assemble(
@@ -253,6 +282,7 @@ def _assemble(
     limits: JointLimits,
     geometry: ArmGeometry,
     kind: TrajectoryKind,
+    pose_names: Sequence[str] | None = None,
 ) -> TimedMotion:
     """One trajectory from the chunks, and the per-segment report."""
     segments: list[Segment] = []
@@ -261,7 +291,14 @@ def _assemble(
         segments.extend(ch.trajectory.segments)
         q_parts.append(np.asarray(ch.trajectory.waypoints.q)[:-1])
     q_parts.append(np.asarray(chunks[-1].trajectory.waypoints.q)[-1:])
-    waypoints = resolve_waypoints(np.concatenate(q_parts), geometry)
+    q_all = np.concatenate(q_parts)
+    names = _vertex_names(paths, pose_names)
+    waypoints = resolve_waypoints(
+        q_all
+        if names is None or len(names) != len(q_all)
+        else [JointPose(tuple(q.tolist()), name) for q, name in zip(q_all, names)],
+        geometry,
+    )
     trajectory = Trajectory(TrajectoryKind(kind), tuple(segments), waypoints, limits)
     check_trajectory(trajectory, geometry)
     report: list[TimedSegment] = []

@@ -145,6 +145,7 @@ def plan_task(
         labels=[f"{a} -> {b}" for a, b in itertools.pairwise(names)],
         kind=TrajectoryKind.PLANNED,
         progress=progress,
+        pose_names=names,
     )
 
 
