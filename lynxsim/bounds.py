@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.errors import InvalidInputError, NonFiniteInputError, short
 
 __all__ = [
     "MAX_ANGLE_RAD",
@@ -102,16 +102,10 @@ def check_count(value: int, name: str, low: int, high: int) -> int:
         except (TypeError, ValueError):  # e.g. an array of several numbers
             converted = None
         if converted is None:
-            raise InvalidInputError(f"{name} must be an integer, got {_short(value)}")
+            raise InvalidInputError(f"{name} must be an integer, got {short(value)}")
         value = converted
     if not low <= value <= high:
         digits = len(str(abs(value)))
         got = f"{value:,}" if digits <= 30 else f"a {digits}-digit integer"
         raise InvalidInputError(f"{name} must be between {low:,} and {high:,}, got {got}")
     return value
-
-
-def _short(value: object) -> str:
-    """``repr(value)``, at most 60 characters."""
-    text = repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."

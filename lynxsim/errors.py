@@ -189,3 +189,15 @@ class VideoError(LynxsimError, OSError):
 
 
 __all__ += ["OutputPathError", "VideoError"]
+
+
+def short(value: object) -> str:
+    """``repr(value)`` cut to 80 characters, for messages (huge values stay readable)."""
+    try:
+        text = repr(value)
+    except ValueError:  # an integer of more than 4300 digits
+        return f"a {type(value).__name__} too long to print"
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+__all__ += ["short"]

@@ -15,9 +15,9 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_real_array
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import real_array
 
 __all__ = [
     "FRAME_NAMES",
@@ -62,7 +62,7 @@ def as_joint_array(q: npt.ArrayLike, name: str = "q") -> FloatArray:
         InvalidInputError: Not real numbers, or the last axis does not have length 5.
         NonFiniteInputError: An angle is NaN or infinite.
     """
-    arr = as_real_array(q, name)
+    arr = real_array(q, name)
     if arr.ndim == 0 or arr.shape[-1] != 5:
         raise InvalidInputError(f"{name} must have shape (..., 5), got {arr.shape}")
     if not np.isfinite(arr).all():

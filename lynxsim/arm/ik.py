@@ -35,7 +35,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import LIMIT_TOL, as_real_array, wrap_angle
+from lynxsim.angles import LIMIT_TOL, wrap_angle
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES
 from lynxsim.errors import (
@@ -44,6 +44,7 @@ from lynxsim.errors import (
     NonFiniteInputError,
     OutOfReachError,
 )
+from lynxsim.inputs import real_array
 
 __all__ = ["IKResult", "IKStatus", "ik"]
 
@@ -177,7 +178,7 @@ def ik(
             targets.
     """
     geometry = check_geometry(geometry)
-    p = as_real_array(position, "position")
+    p = real_array(position, "position")
     if p.ndim == 0 or p.shape[-1] != 3:
         raise InvalidInputError(f"position must have shape (..., 3), got {p.shape}")
     far = np.abs(p) > MAX_COORDINATE_M  # NaN compares False; inf is caught below as NOT_FINITE
@@ -186,12 +187,12 @@ def ik(
             f"position coordinates must be within ±{MAX_COORDINATE_M:g} m "
             f"(the arm reaches under 1 m), got {_largest(p):g} m"
         )
-    ref = None if q_ref is None else as_real_array(q_ref, "q_ref")
+    ref = None if q_ref is None else real_array(q_ref, "q_ref")
     if ref is not None and (ref.ndim == 0 or ref.shape[-1] != 5):
         raise InvalidInputError(f"q_ref must have shape (..., 5), got {ref.shape}")
-    phi_in = as_real_array(pitch, "pitch")
+    phi_in = real_array(pitch, "pitch")
     roll_in = (0.0 if ref is None else ref[..., 4]) if roll is None else roll
-    roll_arr = as_real_array(roll_in, "roll")
+    roll_arr = real_array(roll_in, "roll")
     try:
         batch = np.broadcast_shapes(p.shape[:-1], phi_in.shape, roll_arr.shape)
         if ref is not None:

@@ -21,11 +21,12 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import LIMIT_TOL, as_real_array, as_real_number, wrap_angle_float
+from lynxsim.angles import LIMIT_TOL, wrap_angle_float
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.arm.ik import IKStatus, ik
 from lynxsim.bounds import MAX_COORDINATE_M
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import real_array, real_number
 
 __all__ = ["ik_nearest", "ik_one", "tool_pose_of"]
 
@@ -242,7 +243,7 @@ def ik_nearest(
 def _floats(value: object, n: int, name: str) -> list[float]:
     """``value`` as ``n`` Python floats (not checked for finiteness), or InvalidInputError."""
     try:
-        arr = as_real_array(value, name)
+        arr = real_array(value, name)
     except InvalidInputError as exc:
         raise InvalidInputError(f"{name} must be {n} numbers: {exc}") from None
     if arr.shape != (n,):
@@ -259,7 +260,7 @@ def _joints(q: object) -> list[float]:
     return values
 
 
-_number = as_real_number
+_number = real_number
 """``value`` as one Python float (a 0-d or 1-element array is one), or InvalidInputError."""
 
 

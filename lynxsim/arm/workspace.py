@@ -12,11 +12,11 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_count
 from lynxsim.arm.fk import tool_pose
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import count
 
 __all__ = ["WorkspaceSamples", "sample_workspace"]
 
@@ -63,7 +63,7 @@ def sample_workspace(
             allocated), ``rng`` not a Generator, ``progress`` not callable, or
             ``geometry`` not an :class:`~lynxsim.arm.geometry.ArmGeometry`.
     """
-    n = as_count(n, "number of samples", 1, MAX_SAMPLES)
+    n = count(n, "number of samples", 1, MAX_SAMPLES)
     if not isinstance(rng, np.random.Generator):
         raise InvalidInputError(f"rng must be a numpy.random.Generator, got {rng!r}")
     if progress is not None and not callable(progress):

@@ -28,7 +28,6 @@ import lynxsim.sim  # noqa: F401
 # isort: split
 import mujoco
 
-from lynxsim.angles import as_count, as_real_array
 from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
 from lynxsim.bounds import MAX_CONTROL_DT_S, MAX_COORDINATE_M, check_range
 from lynxsim.envs.control import (
@@ -48,6 +47,7 @@ from lynxsim.envs.workspace import (
     top_down_reachable,
 )
 from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
+from lynxsim.inputs import count, real_array
 from lynxsim.scene import REPORT_CUBE, REPORT_CYLINDER, Box, Cylinder, Obstacle, Scene, Sphere
 from lynxsim.sim.arm.model import SceneIds, load_arm_spec, table_top_z
 from lynxsim.sim.arm.task import GRIPPER_OPEN_M
@@ -208,8 +208,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         quality = _enum(Quality, render_quality, "render_quality")
         if not isinstance(camera, str):
             raise InvalidInputError(f"camera must be a camera name (a string), got {camera!r}")
-        width = as_count(width, "width", 1, _MAX_FRAME_PX)
-        height = as_count(height, "height", 1, _MAX_FRAME_PX)
+        width = count(width, "width", 1, _MAX_FRAME_PX)
+        height = count(height, "height", 1, _MAX_FRAME_PX)
         settings = RenderSettings(width=width, height=height, camera=camera, quality=quality)
         self.control = _enum(ControlMode, control, "control")
         self.reward_type = _enum(RewardType, reward_type, "reward_type")
@@ -479,7 +479,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
                 booleans, complex numbers, object arrays...) or has the wrong shape.
             NonFiniteInputError: The action holds NaN or infinity.
         """
-        a = as_real_array(action, "action")
+        a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
         values = a.tolist()

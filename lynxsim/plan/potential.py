@@ -18,13 +18,13 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import positive_number
 from lynxsim.plan.edges import check_edges
 from lynxsim.plan.errors import LocalMinimumError
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.plan.problem import make_problem
 from lynxsim.plan.progress import PlanProgress, ProgressCallback
 from lynxsim.plan.segment import DEFAULT_SHORTCUTS, SegmentPlan, check_seed, finish_segment
-from lynxsim.traj.inputs import positive_number
 
 __all__ = ["potential_field_segment"]
 

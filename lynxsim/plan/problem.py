@@ -13,9 +13,9 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import finite_array, flag, number_in_range, positive_number
 from lynxsim.plan.errors import GoalsInCollisionError, StartInCollisionError
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
-from lynxsim.traj.inputs import finite_array, flag, number_in_range, positive_number
 
 __all__ = ["MAX_LIPSCHITZ", "MAX_MARGIN_M", "Problem", "check_settings", "make_problem"]
 

@@ -14,6 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import number_in_range
 from lynxsim.plan.edges import check_edges, check_path
 from lynxsim.plan.errors import NoPathError, PlanningError
 from lynxsim.plan.ompl_planners import MAX_SEED, PlannerName, check_planner, solve
@@ -21,7 +22,6 @@ from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.plan.problem import Problem, make_problem
 from lynxsim.plan.progress import PlanProgress, ProgressCallback
 from lynxsim.plan.shortcut import drop_duplicates, path_length, shorten_path
-from lynxsim.traj.inputs import number_in_range
 
 __all__ = [
     "DEFAULT_SHORTCUTS",

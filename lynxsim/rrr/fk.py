@@ -27,9 +27,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_count, wrap_angle
+from lynxsim.angles import wrap_angle
 from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import count
 from lynxsim.rrr.geometry import (
     RRR_ROBOT,
     RRRGeometry,
@@ -278,7 +279,7 @@ def fk_near(
     geometry = check_rrr_geometry(geometry)
     th = _as_theta(theta)
     g = as_pose_array(guess, "guess")
-    max_iter = as_count(max_iter, "max_iter", 1, MAX_NEWTON_ITER)
+    max_iter = count(max_iter, "max_iter", 1, MAX_NEWTON_ITER)
     try:
         batch = np.broadcast_shapes(th.shape[:-1], g.shape[:-1])
     except ValueError as exc:
@@ -334,7 +335,7 @@ def fk_path(
     start_pose = as_pose_array(start, "start")
     if start_pose.shape != (3,):
         raise InvalidInputError(f"start must have shape (3,), got {start_pose.shape}")
-    max_halvings = as_count(max_halvings, "max_halvings", 0, MAX_HALVINGS)
+    max_halvings = count(max_halvings, "max_halvings", 0, MAX_HALVINGS)
     pose = np.full(th.shape, np.nan)
     converged = np.zeros(len(th), dtype=bool)
     current = start_pose.reshape(1, 3)

@@ -24,9 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_real_array
 from lynxsim.bounds import MAX_COORDINATE_M
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import real_array
 
 __all__ = [
     "RRR_ROBOT",
@@ -230,7 +230,7 @@ def as_pose_array(pose: npt.ArrayLike, what: str = "pose") -> FloatArray:
         InvalidInputError: Not real numbers, the last axis does not have length
             3, or a finite x or y beyond the bound.
     """
-    arr = as_real_array(pose, what)
+    arr = real_array(pose, what)
     if arr.ndim == 0 or arr.shape[-1] != 3:
         raise InvalidInputError(f"{what} must have shape (..., 3) = (x, y, alpha), got {arr.shape}")
     check_coordinates(arr[..., :2], f"{what} x, y")
@@ -245,7 +245,7 @@ def as_theta_array(theta: npt.ArrayLike, what: str = "theta") -> FloatArray:
     Raises:
         InvalidInputError: Not real numbers, or the last axis does not have length 3.
     """
-    arr = as_real_array(theta, what)
+    arr = real_array(theta, what)
     if arr.ndim == 0 or arr.shape[-1] != 3:
         raise InvalidInputError(f"{what} must have shape (..., 3), got {arr.shape}")
     return arr
@@ -270,7 +270,7 @@ def rotation(alpha: npt.ArrayLike) -> FloatArray:
     Raises:
         InvalidInputError: ``alpha`` is not real numbers.
     """
-    a = as_real_array(alpha, "alpha")
+    a = real_array(alpha, "alpha")
     with np.errstate(invalid="ignore"):  # cos(inf): NaN
         c, s = np.cos(a), np.sin(a)
     return np.stack([np.stack([c, -s], axis=-1), np.stack([s, c], axis=-1)], axis=-2)

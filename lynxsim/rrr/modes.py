@@ -32,7 +32,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.bounds import MAX_SAMPLES
-from lynxsim.errors import InvalidInputError
+from lynxsim.errors import InvalidInputError, short
 
 __all__ = ["MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
 
@@ -58,21 +58,13 @@ def _check_index(mode: npt.ArrayLike) -> npt.NDArray[np.intp]:
         or ((m < 0) | (m >= N_MODES)).any()
     ):
         raise InvalidInputError(
-            f"working mode must be an integer in 0..7 (or an integer array), got {_short(mode)}"
+            f"working mode must be an integer in 0..7 (or an integer array), got {short(mode)}"
         )
     return m.astype(np.intp)
 
 
 _MAX_INDICES = MAX_SAMPLES
 """Most mode indices of one call."""
-
-
-def _short(value: object) -> str:
-    try:
-        text = repr(value)
-    except ValueError:  # an integer of more than 4300 digits
-        return f"a {type(value).__name__} too long to print"
-    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def mode_signs(mode: npt.ArrayLike) -> npt.NDArray[np.int8]:
@@ -113,7 +105,7 @@ def mode_index(signs: npt.ArrayLike | Sequence[int]) -> npt.NDArray[np.intp]:
         or s.size > 3 * _MAX_INDICES
         or not np.isin(s, (-1, 1)).all()
     ):
-        raise InvalidInputError(f"elbow signs must be ±1 with shape (..., 3), got {_short(signs)}")
+        raise InvalidInputError(f"elbow signs must be ±1 with shape (..., 3), got {short(signs)}")
     bits = (s < 0).astype(np.intp)
     out: npt.NDArray[np.intp] = bits[..., 0] + 2 * bits[..., 1] + 4 * bits[..., 2]
     return out
@@ -126,5 +118,5 @@ def mode_label(mode: int) -> str:
         InvalidInputError: If ``mode`` is not one integer in 0..7.
     """
     if np.ndim(_check_index(mode)) != 0:
-        raise InvalidInputError(f"mode_label takes one working mode, got {_short(mode)}")
+        raise InvalidInputError(f"mode_label takes one working mode, got {short(mode)}")
     return "".join("+" if s > 0 else "-" for s in mode_signs(mode))

@@ -17,9 +17,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_real_array, as_real_number, wrap_angle
+from lynxsim.angles import wrap_angle
 from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES, check_range
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import real_array, real_number
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, check_coordinates, check_rrr_geometry
 from lynxsim.rrr.ik import ik
 from lynxsim.rrr.jacobian import singularity_measures
@@ -40,7 +41,7 @@ MIN_STEP_RAD = 1e-5
 
 def _finite_number(value: object, name: str, unit: str = "rad") -> float:
     """``value`` as one finite float, or InvalidInputError / NonFiniteInputError."""
-    v = as_real_number(value, name)
+    v = real_number(value, name)
     if not math.isfinite(v):
         raise NonFiniteInputError(f"{name} must be finite, got {v!r} {unit}")
     return v
@@ -150,7 +151,7 @@ def orientation_range(
             gives a NaN range).
     """
     geometry = check_rrr_geometry(geometry)
-    p = as_real_array(xy, "xy")
+    p = real_array(xy, "xy")
     if p.ndim == 0 or p.shape[-1] != 2:
         raise InvalidInputError(f"xy must have shape (..., 2), got {p.shape}")
     check_coordinates(p, "xy")
@@ -273,7 +274,7 @@ def orientation_range_in_mode(
         raise InvalidInputError(f"mode must be one integer in 0..7, got shape {index.shape}")
     m = int(index)
     alpha_ref = _finite_number(alpha_ref, "alpha_ref")
-    step = check_range(as_real_number(step, "step"), "step", MIN_STEP_RAD, math.pi, "rad")
+    step = check_range(real_number(step, "step"), "step", MIN_STEP_RAD, math.pi, "rad")
     rng = orientation_range(np.array([x, y]), alpha_ref, geometry)
     lower, upper = float(rng.lower), float(rng.upper)
     if not math.isfinite(lower):

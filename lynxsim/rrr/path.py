@@ -38,9 +38,9 @@ from lynxsim.errors import (
     TrajectoryError,
     UnreachablePlatformPoseError,
 )
+from lynxsim.inputs import finite_array, flag, instance, positive_number, real_array
 from lynxsim.rrr import RRR_ROBOT, RRRGeometry, ik, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
-from lynxsim.traj.inputs import finite_array, flag, instance, positive_number, real_array
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
 from lynxsim.traj.timing import check_planned, given_durations

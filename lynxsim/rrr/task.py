@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import instance
 from lynxsim.rrr.path import (
     DEFAULT_PLATFORM_LIMITS,
     RRR_TRAJECTORY_KINDS,
@@ -14,7 +15,6 @@ from lynxsim.rrr.path import (
 )
 from lynxsim.tasks import PlanarPose, Task
 from lynxsim.traj.build import parse_kind
-from lynxsim.traj.inputs import instance
 from lynxsim.traj.kinds import TrajectoryKind
 
 __all__ = ["path_from_task"]

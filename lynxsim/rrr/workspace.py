@@ -24,9 +24,10 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import as_real_array, as_real_number, wrap_angle
+from lynxsim.angles import wrap_angle
 from lynxsim.bounds import MAX_CELLS, MAX_COORDINATE_M, check_range
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import real_array, real_number
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, check_rrr_geometry, rotation
 from lynxsim.rrr.ik import REACH_TOL
 from lynxsim.rrr.modes import MODE_SIGNS, N_MODES, _check_index
@@ -51,7 +52,7 @@ MAX_ORIENTATIONS = 10_000
 
 def _angle(value: object, name: str) -> float:
     """One finite angle [rad], or InvalidInputError / NonFiniteInputError."""
-    v = as_real_number(value, name)
+    v = real_number(value, name)
     if not math.isfinite(v):
         raise NonFiniteInputError(f"{name} must be finite, got {v!r} rad")
     return v
@@ -59,7 +60,7 @@ def _angle(value: object, name: str) -> float:
 
 def _angles(values: object, name: str) -> list[float]:
     """A non-empty 1-D sequence of finite angles [rad], at most MAX_ORIENTATIONS."""
-    arr = as_real_array(values, name)
+    arr = real_array(values, name)
     if arr.ndim != 1 or not 1 <= arr.size <= MAX_ORIENTATIONS:
         raise InvalidInputError(
             f"{name} must be 1 to {MAX_ORIENTATIONS:,} orientations [rad] in a 1-D sequence, "
@@ -130,7 +131,7 @@ def grid_extent(
     """
     geometry = check_rrr_geometry(geometry)
     alphas = _angles(alphas, "alphas")
-    margin = check_range(as_real_number(margin, "margin"), "margin", 0.0, MAX_COORDINATE_M, "m")
+    margin = check_range(real_number(margin, "margin"), "margin", 0.0, MAX_COORDINATE_M, "m")
     boxes = []
     for a in alphas:
         ann = leg_annuli(a, geometry)
@@ -198,7 +199,7 @@ class WorkspaceMap:
                 not a number in [0, 10].
         """
         m = _one_mode(mode)
-        margin = check_range(as_real_number(margin, "margin"), "margin", 0.0, 10.0)
+        margin = check_range(real_number(margin, "margin"), "margin", 0.0, 10.0)
         with np.errstate(invalid="ignore"):
             out: npt.NDArray[np.bool_] = (np.abs(self.parallel[..., m]) > margin) & (
                 self.serial > margin
@@ -298,8 +299,8 @@ def workspace_map(
     geometry = check_rrr_geometry(geometry)
     if not isinstance(with_theta, bool | np.bool_):
         raise InvalidInputError(f"with_theta must be True or False, got {with_theta!r}")
-    xs = as_real_array(x, "x")
-    ys = as_real_array(y, "y")
+    xs = real_array(x, "x")
+    ys = real_array(y, "y")
     for name, arr in (("x", xs), ("y", ys)):
         if arr.ndim != 1 or arr.size == 0 or not np.isfinite(arr).all():
             shown = np.array2string(arr, threshold=6)
@@ -401,7 +402,7 @@ def workspace_maps(
     """
     geometry = check_rrr_geometry(geometry)
     alphas = _angles(alphas, "alphas")
-    box = as_real_array(extent, "extent")
+    box = real_array(extent, "extent")
     if box.shape != (4,):
         raise InvalidInputError(
             f"extent must be (x_min, x_max, y_min, y_max) [m], got shape {box.shape}"
@@ -412,7 +413,7 @@ def workspace_maps(
     )
     if x0 > x1 or y0 > y1:
         raise InvalidInputError(f"extent must have min <= max, got {box.tolist()} m")
-    step = as_real_number(resolution, "resolution")
+    step = real_number(resolution, "resolution")
     if not math.isfinite(step):
         raise NonFiniteInputError(f"grid resolution must be finite, got {step!r} m")
     if not step > 0.0:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import flag
 from lynxsim.traj.cartesian import cartesian_line
-from lynxsim.traj.inputs import flag
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.lspb import lspb

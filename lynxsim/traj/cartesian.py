@@ -26,8 +26,8 @@ from lynxsim.angles import LIMIT_TOL, wrap_angle
 from lynxsim.arm import LYNX_ARM, ArmGeometry, ik
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
+from lynxsim.inputs import instance, number_in_range
 from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
-from lynxsim.traj.inputs import instance, number_in_range
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options, quintic_scaling

@@ -19,7 +19,7 @@ import numpy.typing as npt
 from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError, LimitViolationError
-from lynxsim.traj.inputs import instance
+from lynxsim.inputs import instance
 
 if TYPE_CHECKING:  # trajectory.py imports the waypoints, which import CHECK_POINTS from here
     from lynxsim.traj.trajectory import Segment, Trajectory

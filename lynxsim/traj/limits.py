@@ -17,7 +17,7 @@ import numpy.typing as npt
 
 from lynxsim.arm.servos import AL5D_SERVOS
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.traj.inputs import instance, real_array
+from lynxsim.inputs import instance, real_array
 
 __all__ = ["DEFAULT_LIMITS", "JointLimits", "check_limits"]
 

@@ -21,8 +21,8 @@ import numpy.typing as npt
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import finite_array, number_in_range, positive_number, real_number
 from lynxsim.traj.check import check_trajectory
-from lynxsim.traj.inputs import finite_array, number_in_range, positive_number, real_number
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options

@@ -24,8 +24,8 @@ import numpy.typing as npt
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import finite_array, flag, number_in_range
 from lynxsim.traj.check import check_trajectory
-from lynxsim.traj.inputs import finite_array, flag, number_in_range
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits, check_limits
 from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations

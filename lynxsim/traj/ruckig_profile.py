@@ -32,8 +32,8 @@ from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MIN_SEGMENT_S
 from lynxsim.errors import SegmentDurationError, TrajectoryError
+from lynxsim.inputs import flag
 from lynxsim.traj.check import check_trajectory
-from lynxsim.traj.inputs import flag
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options

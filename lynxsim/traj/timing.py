@@ -28,7 +28,7 @@ import numpy.typing as npt
 
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.traj.inputs import real_array
+from lynxsim.inputs import real_array
 from lynxsim.traj.limits import JointLimits
 
 __all__ = [

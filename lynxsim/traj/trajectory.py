@@ -25,7 +25,7 @@ from lynxsim.bounds import (
     check_count,
 )
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.traj.inputs import instance, number_in_range, real_array
+from lynxsim.inputs import instance, number_in_range, real_array
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import JointLimits
 from lynxsim.traj.waypoints import Waypoints

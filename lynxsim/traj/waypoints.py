@@ -24,8 +24,8 @@ from lynxsim.errors import (
     NonFiniteInputError,
     OutOfReachError,
 )
+from lynxsim.inputs import finite_array, instance, real_array, real_number
 from lynxsim.traj.check import CHECK_POINTS
-from lynxsim.traj.inputs import finite_array, instance, real_array, real_number
 
 __all__ = [
     "MAX_WAYPOINTS",

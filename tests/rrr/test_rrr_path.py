@@ -276,7 +276,7 @@ def test_arguments_of_the_wrong_type_are_typed_errors(kwargs, message):
 
 
 def test_platform_limits_and_samples_refuse_non_numbers():
-    with pytest.raises(InvalidInputError, match="platform limit speed must be real numbers"):
+    with pytest.raises(InvalidInputError, match="platform limit speed must be a number, got"):
         PlatformLimits("fast")  # type: ignore[arg-type]
     path = platform_path(np.array([HOME, FIGURE20_A]), 2.0)
     with pytest.raises(NonFiniteInputError, match="sample times must be finite"):

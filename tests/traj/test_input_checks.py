@@ -219,7 +219,7 @@ def test_a_one_element_array_counts_as_a_number_consistently():
     assert_close(traj.times_at_rate(np.float32(50.0)), traj.times_at_rate(50.0), atol=0.0)
     pose = ArmPose((0.2, 0.0, 0.2), np.array([0.1]), np.array(0.2))
     assert (pose.pitch, pose.roll) == (0.1, 0.2)
-    with pytest.raises(InvalidInputError, match=r"must be one number .* got shape \(2,\)"):
+    with pytest.raises(InvalidInputError, match=r"must be a number .* got shape \(2,\)"):
         traj.times_at_rate(np.array([50.0, 60.0]))
 
 

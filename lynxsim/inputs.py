@@ -1,14 +1,14 @@
-"""Checks of what callers pass to the trajectory layer: real numbers, shapes, ranges, types.
+"""Checks of what callers pass to the library: real numbers, shapes, ranges, counts, types.
 
-Every public function of :mod:`lynxsim.traj` (and the 3-RRR platform paths)
-reads its numeric arguments through these helpers, so a string, ``None``, a
-complex number, a boolean array, a ragged list or an integer beyond float64
-gives :class:`~lynxsim.errors.InvalidInputError` (a ``ValueError``) with the
-offending value in the message, never a NumPy ``TypeError`` or a silent cast.
+Every public function of the pure packages (:mod:`lynxsim.arm`, :mod:`lynxsim.rrr`,
+:mod:`lynxsim.traj`, :mod:`lynxsim.plan`) and the environments reads its numeric
+arguments through these helpers, so a string, ``None``, a complex number, a
+boolean array, a ragged list or an integer beyond float64 gives
+:class:`~lynxsim.errors.InvalidInputError` (a ``ValueError``) with the offending
+value in the message, never a NumPy ``TypeError`` or a silent cast.
 
-Conventions (shared with :func:`lynxsim.angles`' readers): a number may be a
-Python or NumPy number, a 0-d array or a 1-element 1-D array; booleans are not
-numbers.
+Conventions: a number may be a Python or NumPy number, a 0-d array or a
+1-element 1-D array; booleans are not numbers.
 """
 
 from __future__ import annotations
@@ -19,10 +19,11 @@ from typing import TypeVar
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.bounds import check_range
-from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.bounds import check_count, check_range
+from lynxsim.errors import InvalidInputError, NonFiniteInputError, short
 
 __all__ = [
+    "count",
     "finite_array",
     "flag",
     "instance",
@@ -51,15 +52,6 @@ _KIND_WORDS = {
 }
 
 
-def _short(value: object) -> str:
-    """``repr(value)`` cut to 80 characters (a huge array or integer stays readable)."""
-    try:
-        text = repr(value)
-    except ValueError:  # an integer of more than 4300 digits
-        return f"a {type(value).__name__} too long to print"
-    return text if len(text) <= 80 else text[:77] + "..."
-
-
 def real_array(value: object, name: str) -> FloatArray:
     """``value`` as a float64 array, refusing what is not real numbers.
 
@@ -82,17 +74,17 @@ def real_array(value: object, name: str) -> FloatArray:
     if isinstance(value, np.ndarray):
         arr = value
     elif value is None or isinstance(value, str | bytes | dict | set | frozenset):
-        raise InvalidInputError(f"{name} must be real numbers, got {_short(value)}")
+        raise InvalidInputError(f"{name} must be real numbers, got {short(value)}")
     else:
         try:
             arr = np.asarray(value)
         except (TypeError, ValueError, OverflowError):
             raise InvalidInputError(
-                f"{name} must be real numbers in a rectangular array, got {_short(value)}"
+                f"{name} must be real numbers in a rectangular array, got {short(value)}"
             ) from None
     if arr.dtype.kind not in _REAL_KINDS:
         words = _KIND_WORDS.get(arr.dtype.kind, f"dtype {arr.dtype}")
-        raise InvalidInputError(f"{name} must be real numbers, got {words}: {_short(value)}")
+        raise InvalidInputError(f"{name} must be real numbers, got {words}: {short(value)}")
     with np.errstate(over="ignore"):  # a long double beyond float64 becomes inf
         out: FloatArray = np.asarray(arr, dtype=np.float64)
     return out
@@ -107,26 +99,48 @@ def finite_array(value: object, name: str) -> FloatArray:
     """
     arr = real_array(value, name)
     if not np.isfinite(arr).all():
-        raise NonFiniteInputError(f"{name} must be finite, got {_short(arr.tolist())}")
+        raise NonFiniteInputError(f"{name} must be finite, got {short(arr.tolist())}")
     return arr
 
 
 def real_number(value: object, name: str) -> float:
     """``value`` as one Python float (a number, a 0-d or a 1-element 1-D array).
 
-    Not checked for finiteness.
+    Plain floats and NumPy float64 scalars take a fast path (single-target
+    kinematics call this per argument). Not checked for finiteness.
 
     Raises:
         InvalidInputError: Not one real number (the message shows ``value``).
     """
-    if type(value) is float:
-        return value
-    arr = real_array(value, name)
+    kind = type(value)
+    if kind is float or kind is np.float64:
+        return float(value)  # type: ignore[arg-type]
+    if kind is int:
+        try:
+            return float(value)  # type: ignore[arg-type]
+        except OverflowError:
+            raise InvalidInputError(
+                f"{name} must be a number within float64, got {short(value)}"
+            ) from None
+    try:
+        arr = real_array(value, name)
+    except InvalidInputError:
+        raise InvalidInputError(f"{name} must be a number, got {short(value)}") from None
     if arr.size != 1 or arr.ndim > 1:
         raise InvalidInputError(
-            f"{name} must be one number (or an array of one), got shape {arr.shape}"
+            f"{name} must be a number (or an array of one), got shape {arr.shape}"
         )
     return float(arr.reshape(()))
+
+
+def count(value: object, name: str, low: int, high: int) -> int:
+    """``value`` as an int in ``[low, high]`` (:func:`lynxsim.bounds.check_count` for any input).
+
+    Raises:
+        InvalidInputError: Not an integer (bools, floats and arrays of several
+            numbers are not), or outside the range (the message states it).
+    """
+    return check_count(value, name, low, high)  # type: ignore[arg-type]
 
 
 def number_in_range(value: object, name: str, low: float, high: float, unit: str = "") -> float:
@@ -162,7 +176,7 @@ def flag(value: object, name: str) -> bool:
     """
     if isinstance(value, bool | np.bool_):
         return bool(value)
-    raise InvalidInputError(f"{name} must be True or False, got {_short(value)}")
+    raise InvalidInputError(f"{name} must be True or False, got {short(value)}")
 
 
 def instance(value: object, cls: type[T], name: str) -> T:
@@ -174,5 +188,5 @@ def instance(value: object, cls: type[T], name: str) -> T:
     if isinstance(value, cls):
         return value
     raise InvalidInputError(
-        f"{name} must be of type {cls.__name__}, got {type(value).__name__}: {_short(value)}"
+        f"{name} must be of type {cls.__name__}, got {type(value).__name__}: {short(value)}"
     )
