@@ -242,6 +242,9 @@ def ik_nearest(
 
 def _floats(value: object, n: int, name: str) -> list[float]:
     """``value`` as ``n`` Python floats (not checked for finiteness), or InvalidInputError."""
+    if type(value) is np.ndarray and value.dtype == np.float64 and value.shape == (n,):
+        fast: list[float] = value.tolist()  # the common case, without the general checks
+        return fast
     try:
         arr = real_array(value, name)
     except InvalidInputError as exc:
