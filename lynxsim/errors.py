@@ -9,6 +9,7 @@ from __future__ import annotations
 
 __all__ = [
     "InvalidInputError",
+    "InvalidTypeError",
     "JointRangeError",
     "LynxsimError",
     "NonFiniteInputError",
@@ -24,6 +25,13 @@ class LynxsimError(Exception):
 
 class InvalidInputError(LynxsimError, ValueError):
     """An argument has the wrong shape, type or value."""
+
+
+class InvalidTypeError(InvalidInputError, TypeError):
+    """An argument has the wrong type (a string, None, a complex or boolean array...).
+
+    Both a ``ValueError`` (as every :class:`InvalidInputError`) and a ``TypeError``.
+    """
 
 
 class NonFiniteInputError(InvalidInputError):

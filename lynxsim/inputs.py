@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.bounds import check_count, check_range
-from lynxsim.errors import InvalidInputError, NonFiniteInputError, short
+from lynxsim.errors import InvalidInputError, InvalidTypeError, NonFiniteInputError, short
 
 __all__ = [
     "count",
@@ -69,22 +69,22 @@ def real_array(value: object, name: str) -> FloatArray:
         copy it before keeping or freezing it).
 
     Raises:
-        InvalidInputError: ``value`` is not real numbers (the message shows it).
+        InvalidTypeError: ``value`` is not real numbers (the message shows it).
     """
     if isinstance(value, np.ndarray):
         arr = value
     elif value is None or isinstance(value, str | bytes | dict | set | frozenset):
-        raise InvalidInputError(f"{name} must be real numbers, got {short(value)}")
+        raise InvalidTypeError(f"{name} must be real numbers, got {short(value)}")
     else:
         try:
             arr = np.asarray(value)
         except (TypeError, ValueError, OverflowError):
-            raise InvalidInputError(
+            raise InvalidTypeError(
                 f"{name} must be real numbers in a rectangular array, got {short(value)}"
             ) from None
     if arr.dtype.kind not in _REAL_KINDS:
         words = _KIND_WORDS.get(arr.dtype.kind, f"dtype {arr.dtype}")
-        raise InvalidInputError(f"{name} must be real numbers, got {words}: {short(value)}")
+        raise InvalidTypeError(f"{name} must be real numbers, got {words}: {short(value)}")
     with np.errstate(over="ignore"):  # a long double beyond float64 becomes inf
         out: FloatArray = np.asarray(arr, dtype=np.float64)
     return out
@@ -125,7 +125,7 @@ def real_number(value: object, name: str) -> float:
     try:
         arr = real_array(value, name)
     except InvalidInputError:
-        raise InvalidInputError(f"{name} must be a number, got {short(value)}") from None
+        raise InvalidTypeError(f"{name} must be a number, got {short(value)}") from None
     if arr.size != 1 or arr.ndim > 1:
         raise InvalidInputError(
             f"{name} must be a number (or an array of one), got shape {arr.shape}"
@@ -176,7 +176,7 @@ def flag(value: object, name: str) -> bool:
     """
     if isinstance(value, bool | np.bool_):
         return bool(value)
-    raise InvalidInputError(f"{name} must be True or False, got {short(value)}")
+    raise InvalidTypeError(f"{name} must be True or False, got {short(value)}")
 
 
 def instance(value: object, cls: type[T], name: str) -> T:
@@ -187,6 +187,6 @@ def instance(value: object, cls: type[T], name: str) -> T:
     """
     if isinstance(value, cls):
         return value
-    raise InvalidInputError(
+    raise InvalidTypeError(
         f"{name} must be of type {cls.__name__}, got {type(value).__name__}: {short(value)}"
     )

@@ -248,7 +248,7 @@ def _floats(value: object, n: int, name: str) -> list[float]:
     try:
         arr = real_array(value, name)
     except InvalidInputError as exc:
-        raise InvalidInputError(f"{name} must be {n} numbers: {exc}") from None
+        raise type(exc)(f"{name} must be {n} numbers: {exc}") from None
     if arr.shape != (n,):
         raise InvalidInputError(f"{name} must have shape ({n},), got {arr.shape}")
     values: list[float] = arr.tolist()

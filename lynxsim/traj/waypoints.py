@@ -240,8 +240,8 @@ def resolve_waypoints(waypoints: WaypointsLike, geometry: ArmGeometry = LYNX_ARM
     else:
         try:
             arr = real_array(waypoints, "joint waypoints")
-        except InvalidInputError as exc:
-            raise InvalidInputError(
+        except InvalidInputError as exc:  # keeps its class (InvalidTypeError for a wrong type)
+            raise type(exc)(
                 f"waypoints must be ArmPose/JointPose objects or joints of shape (N, 5): {exc}"
             ) from None
         if arr.ndim != 2 or arr.shape[1] != 5:
