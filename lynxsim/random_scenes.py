@@ -43,16 +43,6 @@ def _one(rng: np.random.Generator, name: str) -> Obstacle:
     return Sphere(name, (x, y, rng.uniform(0.05, 0.35)), radius=r)
 
 
-def _too_close(obstacle: Obstacle, point: Sequence[float], gap: float) -> bool:
-    """Whether ``point`` is inside the obstacle grown by ``gap`` [m] (a sample test)."""
-    p = np.asarray(point, dtype=float)
-    for offset in ((0, 0, 0), (gap, 0, 0), (-gap, 0, 0), (0, gap, 0), (0, -gap, 0),
-                   (0, 0, gap), (0, 0, -gap)):  # fmt: skip
-        if obstacle.contains(tuple((p + offset).tolist())):
-            return True
-    return False
-
-
 def random_obstacles(
     rng: np.random.Generator,
     number: int,
@@ -67,8 +57,7 @@ def random_obstacles(
         number: How many, 0 to 8.
         keep_free: Points no obstacle may come within ``gap_m`` of, each (3,) [m]
             (tool targets, the cube); the base axis is always kept free.
-        gap_m: Free distance around those points [m] (checked at the point and
-            six points ``gap_m`` away).
+        gap_m: Least distance from those points to any obstacle [m].
 
     Returns:
         The obstacles (pure :mod:`lynxsim.scene` objects).
@@ -78,12 +67,14 @@ def random_obstacles(
             points to keep free leave no room).
     """
     n = count(number, "number", 0, 8)
-    free = [tuple(map(float, p)) for p in keep_free] + [(0.0, 0.0, z) for z in (0.0, 0.1, 0.2)]
+    free: list[tuple[float, float, float]] = [
+        (float(p[0]), float(p[1]), float(p[2])) for p in keep_free
+    ] + [(0.0, 0.0, z) for z in (0.0, 0.1, 0.2)]
     out: list[Obstacle] = []
     for i in range(n):
         for _ in range(_MAX_TRIES):
             candidate = _one(rng, f"obstacle{i + 1}")
-            if any(_too_close(candidate, p, gap_m) for p in free):
+            if any(candidate.distance(p) < gap_m for p in free):
                 continue
             centre = np.asarray(candidate.position[:2])
             if any(np.hypot(*(centre - np.asarray(o.position[:2]))) < 0.05 for o in out):

@@ -91,8 +91,13 @@ class Cylinder:
 
     def contains(self, point: tuple[float, float, float]) -> bool:
         """Whether a point [m] lies inside (or on) the cylinder."""
+        return self.distance(point) == 0.0
+
+    def distance(self, point: tuple[float, float, float]) -> float:
+        """Distance from a point to the cylinder [m]; 0 inside or on it."""
         x, y, z = (point[i] - self.position[i] for i in range(3))
-        return math.hypot(x, y) <= self.radius and 0.0 <= z <= self.height
+        radial = max(math.hypot(x, y) - self.radius, 0.0)
+        return math.hypot(radial, max(-z, z - self.height, 0.0))
 
 
 @dataclass(frozen=True)
@@ -126,13 +131,17 @@ class Box:
 
     def contains(self, point: tuple[float, float, float]) -> bool:
         """Whether a point [m] lies inside (or on) the box."""
+        return self.distance(point) == 0.0
+
+    def distance(self, point: tuple[float, float, float]) -> float:
+        """Distance from a point to the box [m]; 0 inside or on it."""
         dx, dy, dz = (point[i] - self.position[i] for i in range(3))
         c, s = math.cos(self.yaw), math.sin(self.yaw)
         u, v = c * dx + s * dy, -s * dx + c * dy
-        return (
-            abs(u) <= 0.5 * self.size[0]
-            and abs(v) <= 0.5 * self.size[1]
-            and 0 <= dz <= self.size[2]
+        return math.sqrt(
+            max(abs(u) - 0.5 * self.size[0], 0.0) ** 2
+            + max(abs(v) - 0.5 * self.size[1], 0.0) ** 2
+            + max(-dz, dz - self.size[2], 0.0) ** 2
         )
 
 
@@ -163,7 +172,11 @@ class Sphere:
 
     def contains(self, point: tuple[float, float, float]) -> bool:
         """Whether a point [m] lies inside (or on) the sphere."""
-        return math.dist(point, self.position) <= self.radius
+        return self.distance(point) == 0.0
+
+    def distance(self, point: tuple[float, float, float]) -> float:
+        """Distance from a point to the sphere [m]; 0 inside or on it."""
+        return max(math.dist(point, self.position) - self.radius, 0.0)
 
 
 Obstacle = Cylinder | Box | Sphere
