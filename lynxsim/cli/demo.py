@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -11,6 +12,7 @@ from pathlib import Path
 import numpy as np
 
 from lynxsim.arm import frame_origins, ik, tool_pose
+from lynxsim.cli.units import bounded_int
 from lynxsim.reproduce.arm_tables import FK_CASES, TABLE4
 
 __all__ = ["register"]
@@ -70,7 +72,7 @@ def _simulations(args: argparse.Namespace) -> None:
 
             return update
 
-        reports = run_arm_demo(runs, args.out_dir, render, progress(0))
+        reports = run_arm_demo(runs, args.out_dir, render, progress(0), jobs=args.jobs)
         reports += run_rrr_demo(args.out_dir, render, progress(len(runs)), tasks=args.tasks)
     print(SUMMARY_HEADER)
     for report in reports:
@@ -117,5 +119,11 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         help="output folder (default videos/)",
     )
     p.add_argument("--quality", choices=("fast", "default"), default="default")
+    p.add_argument(
+        "--jobs",
+        type=bounded_int(1, 64),
+        default=os.cpu_count() or 1,
+        help="arm runs played at the same time, one process each (default: the CPU count)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_demo)
