@@ -438,19 +438,7 @@ class CollisionChecker:
         out = np.full(count, limit)
         xpos = np.empty((count, len(carried), 3))
         for k in range(count):  # pass 1: contacts, and where every geom is
-            d.qpos[:] = states[k]
-            if grasped and self._attach is not None:
-                self._hold_payload(*self._attach)
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_collision(m, d)
-            ncon = int(d.ncon)
-            if ncon and any(
-                (g1, g2) in hits
-                for (g1, g2), dist in zip(
-                    d.contact.geom[:ncon].tolist(), d.contact.dist[:ncon].tolist()
-                )
-                if dist <= 0.0
-            ):
+            if any(pair in hits for pair in self._touching(states[k], grasped)):
                 out[k] = -np.inf
             xpos[k] = d.geom_xpos[carried]
         if len(obstacles) == 0 or len(carried) == 0:
@@ -513,20 +501,8 @@ class CollisionChecker:
         support = np.zeros(count, dtype=bool)
         clearance = np.empty((count, len(g.obstacle_geoms)))
         for k in range(count):
-            d.qpos[:] = states[k]
-            if grasped and self._attach is not None:
-                self._hold_payload(*self._attach)
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_collision(m, d)
-            ncon = int(d.ncon)
-            if ncon:
-                touching = [
-                    (g1, g2)
-                    for (g1, g2), dist in zip(
-                        d.contact.geom[:ncon].tolist(), d.contact.dist[:ncon].tolist()
-                    )
-                    if dist <= 0.0
-                ]
+            touching = self._touching(states[k], grasped)
+            if touching:
                 obstacle[k] = any(pair in self._obstacle_pairs for pair in touching)
                 self_hit[k] = any(pair in self._self_pairs for pair in touching)
                 support[k] = any(pair in self._support_pairs for pair in touching)
@@ -534,6 +510,25 @@ class CollisionChecker:
                 self._boxes = obstacle_boxes(m, d, g)
             clearance[k] = clearances(m, d, g, self._cap, self._fromto, self._boxes)
         return CollisionCheck(obstacle, self_hit, support, clearance, g.obstacle_names)
+
+    def _touching(self, state: FloatArray, grasped: bool) -> list[tuple[int, int]]:
+        """Pose ``state`` (the payload held if ``grasped``) and list the touching geom pairs."""
+        m, d = self.model, self._data
+        d.qpos[:] = state
+        if grasped and self._attach is not None:
+            self._hold_payload(*self._attach)
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_collision(m, d)
+        ncon = int(d.ncon)
+        if not ncon:
+            return []
+        return [
+            (g1, g2)
+            for (g1, g2), dist in zip(
+                d.contact.geom[:ncon].tolist(), d.contact.dist[:ncon].tolist()
+            )
+            if dist <= 0.0
+        ]
 
     def _hold_payload(self, qpos_adr: int, site: int) -> None:
         """Put the payload's free joint at the site (position and orientation)."""
