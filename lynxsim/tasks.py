@@ -596,6 +596,8 @@ def load_task(path: str | os.PathLike[str]) -> Task:
         OSError: The file cannot be read.
     """
     path = Path(path)
+    if path.exists() and not path.is_file():  # a folder, or a FIFO that would block the read
+        raise TaskFileError(str(path), None, "not a regular file")
     raw = path.read_bytes()
     try:
         data = tomllib.loads(raw.decode("utf-8"))

@@ -15,6 +15,7 @@ import numpy as np
 from lynxsim.arm import FRAME_NAMES, frame_origins, ik, sample_workspace, tool_pose
 from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.cli.units import Units, add_unit_flags, bounded_int, finite_float, json_list, seed_int
+from lynxsim.fileio import check_destination
 
 __all__ = ["register"]
 
@@ -84,6 +85,7 @@ def _workspace(args: argparse.Namespace) -> int:
 
     from lynxsim.plots.arm_workspace import plot_arm_workspace
 
+    check_destination(args.out)
     rng = np.random.default_rng(args.seed)
     with tqdm(total=args.samples, unit="q", disable=args.quiet) as bar:
         samples = sample_workspace(

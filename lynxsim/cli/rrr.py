@@ -15,6 +15,7 @@ import numpy as np
 from lynxsim.bounds import MAX_ANGLE_RAD, check_range
 from lynxsim.cli.units import Units, add_unit_flags, bounded_float, finite_float, json_list
 from lynxsim.errors import InvalidInputError
+from lynxsim.fileio import check_destination
 from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, format_figure20_table
 from lynxsim.rrr import (
     N_MODES,
@@ -141,6 +142,7 @@ def _workspace(args: argparse.Namespace) -> int:
             f"--alpha-deg takes 1 to {MAX_ALPHAS} orientations, got {len(args.alpha_deg)}"
         )
     limit = math.degrees(MAX_ANGLE_RAD)
+    check_destination(args.out)
     alphas = [
         math.radians(check_range(a, "--alpha-deg", -limit, limit, "deg")) for a in args.alpha_deg
     ]
@@ -161,6 +163,8 @@ def _workspace(args: argparse.Namespace) -> int:
 
 
 def _poses(args: argparse.Namespace) -> int:
+    if args.out is not None:
+        check_destination(args.out)
     print(format_figure20_table())
     centre = np.asarray(RRR_ROBOT.base_centre)
     rng = orientation_range(centre)

@@ -185,3 +185,31 @@ def test_absurd_coordinates_are_refused_before_any_work(cli, argv, message):
     assert message in result.err
     assert result.err.count("\n") == 1
     assert result.out == ""
+
+
+def test_a_fifo_as_task_file_is_refused_not_read(cli, tmp_path):
+    """Reading a FIFO blocks until someone writes to it: refused before any read."""
+    fifo = tmp_path / "task.toml"
+    os.mkfifo(fifo)
+    for argv in (["traj", str(fifo)], ["play", str(fifo), "--no-video"], ["plan", str(fifo)]):
+        result = cli(*argv)
+        assert result.code == 1
+        assert result.err == f"lynxsim: error: {fifo}: not a regular file\n"
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        ["workspace", "--samples", "100", "--out", "{folder}"],
+        ["rrr", "workspace", "--out", "{folder}"],
+        ["rrr", "poses", "--out", "{folder}"],
+    ],
+    ids=["workspace", "rrr-workspace", "rrr-poses"],
+)
+def test_a_wrong_out_is_refused_before_any_work(cli, tmp_path, argv):
+    folder = tmp_path / "x.png"
+    folder.mkdir()
+    result = cli(*[a.format(folder=folder) for a in argv])
+    assert result.code == 1
+    assert result.err == f"lynxsim: error: will not replace {folder}: it is a folder\n"
+    assert result.out == ""
