@@ -22,7 +22,7 @@ playback that uses it).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -39,7 +39,7 @@ from lynxsim.errors import (
     UnreachablePlatformPoseError,
 )
 from lynxsim.inputs import finite_array, flag, instance, positive_number, real_array
-from lynxsim.rrr import RRR_ROBOT, RRRGeometry, ik, singularity_measures
+from lynxsim.rrr import RRR_ROBOT, RRRGeometry, RRRIKResult, ik, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
@@ -360,17 +360,21 @@ def _check_waypoints(waypoints: object) -> FloatArray:
     return w
 
 
-def _check_reach(w: FloatArray, labels: tuple[str, ...], geometry: RRRGeometry) -> None:
-    """Raise UnreachablePlatformPoseError for the first waypoint a leg cannot reach."""
-    result = ik(w, geometry)
+def _reached(poses: FloatArray, where: Callable[[int], str], geometry: RRRGeometry) -> RRRIKResult:
+    """The IK of platform poses (N, 3) [m, m, rad], all reachable.
+
+    Raises:
+        UnreachablePlatformPoseError: At the first pose a leg cannot reach, its
+            message prefixed with ``where(index)``.
+    """
+    result = ik(poses, geometry)
     if not result.ok.all():
         i = int(np.argmin(result.ok))
         try:
             result.raise_for_status(i)
         except UnreachablePlatformPoseError as exc:
-            raise UnreachablePlatformPoseError(
-                f"waypoint {labels[i]!r}: {exc}", legs=exc.legs
-            ) from None
+            raise UnreachablePlatformPoseError(f"{where(i)}: {exc}", legs=exc.legs) from None
+    return result
 
 
 def platform_path(
@@ -434,7 +438,7 @@ def platform_path(
         labels = tuple(names)
     if len(labels) != len(w):
         raise InvalidInputError(f"got {len(labels)} names for {len(w)} waypoints")
-    _check_reach(w, labels, geometry)
+    _reached(w, lambda i: f"waypoint {labels[i]!r}", geometry)
     with np.errstate(over="ignore"):  # alpha beyond ±1e307: inf, refused below
         step = np.linalg.norm(np.diff(w, axis=0) * _metric(geometry), axis=1)
     if not np.isfinite(step).all():
@@ -580,15 +584,7 @@ def actuated_path(
     def where(i: int) -> str:
         return f"{unit} {t[i]:.3f}{'' if times is None else ' s'}"
 
-    result = ik(p, geometry)
-    if not result.ok.all():
-        i = int(np.argmin(result.ok))
-        try:
-            result.raise_for_status(i)
-        except UnreachablePlatformPoseError as exc:
-            raise UnreachablePlatformPoseError(
-                f"path leaves the workspace at {where(i)}: {exc}", legs=exc.legs
-            ) from None
+    result = _reached(p, lambda i: f"path leaves the workspace at {where(i)}", geometry)
     theta = np.unwrap(result.theta[:, int(mode), :], axis=0)
     theta += wrap_to_window(theta[0], geometry) - theta[0]
     centre = actuated_window(geometry)
