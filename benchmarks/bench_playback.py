@@ -1,18 +1,18 @@
-"""Playback speed and render + encode speed, each beside its raw cost.
+"""Playback speed beside the physics alone.
 
 Run: ``python benchmarks/bench_playback.py``.
 
-* Playback real-time factor (simulated s per wall s) of the quintic
-  pick-and-place without rendering (contacts, clearance and logging every step),
-  beside ``mj_step`` alone for the same number of steps.
-* Frames per second of render + H.264 encode at 640x480, beside
-  ``Renderer.render`` alone, for both quality presets.
+* Playback time per physics step of quintic runs without rendering (contacts,
+  clearance to every obstacle and logging every step, the report included),
+  beside the physics alone in the same run: the same commands set and stepped,
+  and ``mj_step`` alone on a fresh data; the ratio of speeds is printed.
+
+Video speed (overlays, encoding, a whole recording) is in ``bench_video.py``.
 """
 
 from __future__ import annotations
 
 import os
-import tempfile
 import time
 from pathlib import Path
 
@@ -23,62 +23,69 @@ import numpy as np
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import play_arm
-from lynxsim.sim.render import Quality, RenderSettings, SceneRenderer
-from lynxsim.sim.video import mp4_writer
+from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 
 ROOT = Path(__file__).resolve().parents[1]
-FRAMES = 60
+REPEATS = 3
+PRESETTLE_S = 0.5
+"""The hold before a playback's record (``rollout``'s default)."""
+
+
+def _physics_alone(model: mujoco.MjModel, q_cmd: np.ndarray, steps: int) -> tuple[float, float]:
+    """Wall time of the same physics without the playback's records: (commanded, bare) [s].
+
+    Commanded: the run's own commands (the hold before it, the trajectory and the
+    settling), set as the playback sets them, then ``mj_step``. Bare: ``mj_step``
+    alone on a fresh data for as many steps (the arm uncommanded).
+    """
+    binding = arm_binding(model)
+    data = mujoco.MjData(model)
+    data.qpos[binding.qpos_adr] = q_cmd[0]
+    mujoco.mj_forward(model, data)
+    hold = round(PRESETTLE_S / model.opt.timestep)
+    ctrl = np.concatenate([np.repeat(q_cmd[:1], hold, axis=0), q_cmd])
+    ctrl = np.concatenate([ctrl, np.repeat(q_cmd[-1:], hold + steps - len(ctrl), axis=0)])
+    adr = binding.actuator_ids
+    start = time.perf_counter()
+    for row in ctrl:
+        data.ctrl[adr] = row
+        mujoco.mj_step(model, data)
+    commanded = time.perf_counter() - start
+    data = mujoco.MjData(model)
+    start = time.perf_counter()
+    for _ in range(len(ctrl)):
+        mujoco.mj_step(model, data)
+    return commanded, time.perf_counter() - start
 
 
 def playback_rtf() -> None:
-    task = load_task(ROOT / "tasks" / "pick_and_place.toml")
-    trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
-    for obstacle_label, model in (
-        ("with obstacle", load_arm_scene()),
-        ("no obstacle", load_arm_scene(obstacle=None)),
+    """Playback against the physics alone, best of REPEATS each, in this run."""
+    for label, path, scene in (
+        ("pick_and_place, cylinder", "pick_and_place.toml", None),
+        ("pick_and_place, no obstacle", "pick_and_place.toml", "none"),
+        ("three_obstacles", "three_obstacles.toml", None),
     ):
-        start = time.perf_counter()
-        playback = play_arm(model, trajectory, task=task.name)
-        wall = time.perf_counter() - start
-        steps = len(playback.log.time_s)
-        simulated = steps * model.opt.timestep
-
-        data = mujoco.MjData(model)
-        start = time.perf_counter()
-        for _ in range(steps):
-            mujoco.mj_step(model, data)
-        raw = time.perf_counter() - start
-        print(
-            f"playback ({obstacle_label:13s}): {simulated / wall:6.1f}x real time; "
-            f"mj_step alone {simulated / raw:6.1f}x; playback overhead {wall / raw:4.2f}x "
-            f"({steps} steps)"
-        )
-
-
-def render_fps() -> None:
-    model = load_arm_scene()
-    data = mujoco.MjData(model)
-    mujoco.mj_resetDataKeyframe(model, data, 0)
-    mujoco.mj_forward(model, data)
-    for quality in Quality:
-        settings = RenderSettings(quality=quality)
-        with SceneRenderer(model, settings) as renderer:
-            renderer.render(data)
+        task = load_task(ROOT / "tasks" / path)
+        trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
+        model = load_arm_scene(task.scene if scene is None else task.scene.without_obstacles())
+        q_cmd = trajectory.sample(physics_grid(trajectory.duration, model.opt.timestep)).q
+        walls, commanded, bare = [], [], []
+        for _ in range(REPEATS):
             start = time.perf_counter()
-            for _ in range(FRAMES):
-                renderer.render(data)
-            raw = (time.perf_counter() - start) / FRAMES
-            with tempfile.TemporaryDirectory() as tmp, mp4_writer(Path(tmp) / "b.mp4", 30) as sink:
-                start = time.perf_counter()
-                for _ in range(FRAMES):
-                    sink.append_data(renderer.render(data))
-                both = (time.perf_counter() - start) / FRAMES
+            playback = play_arm(model, trajectory, task=task.name)
+            walls.append(time.perf_counter() - start)
+            c, b = _physics_alone(model, q_cmd, playback.log.steps)
+            commanded.append(c)
+            bare.append(b)
+        steps = playback.log.steps + round(PRESETTLE_S / model.opt.timestep)
+        wall, c, b = min(walls), min(commanded), min(bare)
         print(
-            f"render {quality.value:7s} 640x480: render+encode {1 / both:5.1f} frames/s, "
-            f"Renderer.render alone {1 / raw:5.1f} frames/s (encode share {1 - raw / both:.0%})"
+            f"playback ({label:27s}): {wall / steps * 1e6:5.1f} us/step; physics alone "
+            f"{c / steps * 1e6:5.1f} us/step (commanded), {b / steps * 1e6:5.1f} us/step "
+            f"(bare mj_step); speed ratio {c / wall:.2f} of commanded, {b / wall:.2f} of bare "
+            f"({steps} steps)"
         )
 
 
@@ -88,7 +95,6 @@ def main() -> None:
         f"numpy {np.__version__}"
     )
     playback_rtf()
-    render_fps()
 
 
 if __name__ == "__main__":

@@ -37,8 +37,8 @@ __all__ = [
 MAX_TIME_LIMIT_S = 3600.0
 """Longest time limit of one segment [s]."""
 
-DEFAULT_SHORTCUTS = 100
-"""Random shortcut attempts per segment [-]."""
+DEFAULT_SHORTCUTS = 30
+"""Random shortcut attempts per segment [-] (after the vertices that can go are dropped)."""
 
 
 @dataclass(frozen=True)

@@ -11,12 +11,14 @@
 * a **table hit** is such a contact between a robot geom and the table or floor;
 * the **clearance** to an obstacle is the smallest signed distance between it and
   any robot or payload geom [m] (negative: penetration), computed exactly
-  (``mj_geomDistance``) only where a bounding-volume bound says it could be
-  below the cap.
+  (``mj_geomDistance``) only for the pairs that a lower bound says could be the
+  nearest, below the cap (in penetration: the depth of the pairs the bound
+  leaves, which for shallow contacts is the deepest).
 
 Playback's per-step verdict (:class:`ContactTracker`), the environments'
 ``info["collision"]`` and the batch :class:`CollisionChecker` all use
-:func:`classify_contacts` and :func:`clearances`; nothing else decides.
+:func:`classify_contacts` and :func:`clearances` (or its batch form
+:func:`clearances_of_states`); nothing else decides.
 """
 
 from __future__ import annotations
@@ -39,12 +41,24 @@ __all__ = [
     "ContactTracker",
     "classify_contacts",
     "clearances",
+    "clearances_of_states",
     "obstacle_boxes",
 ]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 BoolArray = npt.NDArray[np.bool_]
+
+_BOX, _CAPSULE, _CYLINDER, _SPHERE = (
+    int(t)
+    for t in (
+        mujoco.mjtGeom.mjGEOM_BOX,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        mujoco.mjtGeom.mjGEOM_CYLINDER,
+        mujoco.mjtGeom.mjGEOM_SPHERE,
+    )
+)
+"""Geom types as plain ints (comparing arrays with MuJoCo's enum is slow)."""
 
 CLEARANCE_CAP_M = 1.0
 """Clearances are exact below this distance [m]; larger ones read as the cap."""
@@ -160,6 +174,147 @@ def obstacle_boxes(
     return centre, half
 
 
+def _obstacle_sdf(
+    kind: int, size: FloatArray, rbound: float, local: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Signed distance of points to an obstacle, and the way out, in its frame.
+
+    Boxes, cylinders and spheres exactly; any other type by its bounding sphere
+    (a convex set around it, so the bounds built on it stay lower bounds).
+
+    Args:
+        kind: The geom type.
+        size: Its MuJoCo size, (3,) [m].
+        rbound: Its bounding-sphere radius [m].
+        local: Points in the obstacle's frame, (..., 3) [m].
+
+    Returns:
+        Signed distance (..., ) [m] and, where it is positive, the vector from
+        the nearest obstacle point to the point, (..., 3) [m] (zero inside).
+    """
+    if kind == _BOX:
+        over = np.abs(local) - size
+        out = np.copysign(np.maximum(over, 0.0), local)
+        inside = over.max(axis=-1)
+    elif kind == _CYLINDER:
+        rho = np.hypot(local[..., 0], local[..., 1])
+        radial, axial = rho - size[0], np.abs(local[..., 2]) - size[1]
+        scale = np.maximum(radial, 0.0) / np.where(rho > 0.0, rho, 1.0)
+        out = np.stack(
+            [
+                local[..., 0] * scale,
+                local[..., 1] * scale,
+                np.copysign(np.maximum(axial, 0.0), local[..., 2]),
+            ],
+            axis=-1,
+        )
+        inside = np.maximum(radial, axial)
+    else:
+        radius = size[0] if kind == _SPHERE else rbound
+        norm = np.linalg.norm(local, axis=-1)
+        inside = norm - radius
+        out = local * (np.maximum(inside, 0.0) / np.where(norm > 0.0, norm, 1.0))[..., None]
+    dist = np.linalg.norm(out, axis=-1)
+    return np.where(dist > 0.0, dist, inside), out
+
+
+def _extents(model: mujoco.MjModel, geoms: IntArray) -> tuple[FloatArray, FloatArray]:
+    """How far each geom reaches from its centre along a unit direction n, linearly in |n . axis|.
+
+    The extent is at most ``|n . axes| @ e + c`` [m], capped by the bounding
+    radius: a box's half sizes; a capsule's radius plus its half length along
+    its axis; a cylinder's radius times ``|n_x| + |n_y|`` (at least its
+    ``sqrt(1 - n_z^2)``) plus its half height; a sphere's radius; any other
+    shape its bounding radius.
+
+    Returns:
+        ``e``, shape (k, 3) [m], and per geom ``(c, rbound)``, shape (k, 2) [m].
+    """
+    kind = np.asarray(model.geom_type)[geoms]
+    size = np.asarray(model.geom_size)[geoms]
+    rbound = np.asarray(model.geom_rbound)[geoms]
+    linear = np.zeros((len(geoms), 3))
+    const = rbound.copy()
+    box = kind == _BOX
+    linear[box], const[box] = size[box], 0.0
+    capsule = kind == _CAPSULE
+    linear[capsule, 2], const[capsule] = size[capsule, 1], size[capsule, 0]
+    cylinder = kind == _CYLINDER
+    linear[cylinder] = size[cylinder][:, [0, 0, 1]]
+    const[cylinder] = 0.0
+    sphere = kind == _SPHERE
+    const[sphere] = size[sphere, 0]
+    return linear, np.column_stack([const, rbound])
+
+
+def _bounds(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    groups: CollisionGroups,
+    xpos: FloatArray,
+    xmat: FloatArray,
+) -> FloatArray:
+    """Lower bounds of the distance of every carried geom to every obstacle [m], (N, r, m).
+
+    A carried geom whose centre c lies outside an obstacle O is at least
+    ``d(c, O) - h`` from it, with h the geom's extent towards O (its support
+    along the direction out of O: the distance to a convex set is convex, with
+    that direction as gradient); a centre inside gives ``d(c, O) - rbound``.
+    Positive bounds are rigorous; in penetration they hold for the depth of the
+    points of the geom (as MuJoCo's depth does for shallow contacts).
+
+    Args:
+        model: The model.
+        data: A data of the model with the obstacles' poses (any ``mj_kinematics``).
+        groups: The collision groups.
+        xpos: Centres of the r carried geoms in N states, (N, r, 3) [m].
+        xmat: Their orientations (rows of MuJoCo's ``geom_xmat``), (N, r, 9).
+    """
+    carried = np.flatnonzero(groups.carried)
+    extent, reach = _extents(model, carried)
+    axes = np.asarray(xmat).reshape(*xpos.shape[:2], 3, 3)  # columns: the geom's axes
+    out = np.empty((*xpos.shape[:2], len(groups.obstacle_geoms)))
+    for j, g in enumerate(groups.obstacle_geoms.tolist()):
+        rot = np.asarray(data.geom_xmat[g]).reshape(3, 3)
+        local = (xpos - data.geom_xpos[g]) @ rot
+        sdf, away = _obstacle_sdf(
+            int(model.geom_type[g]), model.geom_size[g], float(model.geom_rbound[g]), local
+        )
+        outside = sdf > 0.0
+        n = (away @ rot.T) / np.where(outside, sdf, 1.0)[..., None]  # unit, world frame
+        proj = np.abs(np.einsum("nri,nria->nra", n, axes))  # |n . axis| per geom axis
+        towards = np.minimum(np.einsum("nra,ra->nr", proj, extent) + reach[:, 0], reach[:, 1])
+        out[..., j] = sdf - np.where(outside, towards, reach[:, 1])
+    return out
+
+
+def _exact_row(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    geoms: list[int],
+    obstacles: list[int],
+    order: list[list[int]],
+    bound: list[list[float]],
+    cap: float,
+    fromto: FloatArray,
+) -> list[float]:
+    """Exact clearance to each obstacle of the posed ``data``, (m,) [m].
+
+    ``order[j]`` lists the carried geoms by ascending bound to obstacle j and
+    ``bound[j]`` those bounds; exact distances (``mj_geomDistance``) are computed
+    in that order until the next bound reaches the best distance found.
+    """
+    out = []
+    for obstacle, rank, low in zip(obstacles, order, bound, strict=True):
+        best = cap
+        for i, b in zip(rank, low, strict=True):
+            if b >= best:
+                break
+            best = min(best, mujoco.mj_geomDistance(model, data, geoms[i], obstacle, best, fromto))
+        out.append(best)
+    return out
+
+
 def clearances(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -170,35 +325,103 @@ def clearances(
 ) -> FloatArray:
     """Smallest signed distance from the robot and payload to each obstacle [m], (m,).
 
-    World-aligned boxes around the obstacles (:func:`obstacle_boxes`, given or
-    computed here) and bounding spheres around the robot's geoms give a lower
-    bound for every pair; exact distances (``mj_geomDistance``) are computed in
-    the order of that bound until the next bound exceeds the best distance found,
-    so geoms far from an obstacle cost nothing. Distances of ``cap`` or more read
-    as ``cap``. Needs the geom poses of ``data`` (``mj_kinematics``).
+    Each geom's distance from the obstacle's own shape at its centre, less its
+    extent towards the obstacle, bounds every pair from below; exact distances
+    (``mj_geomDistance``) are computed in the order of that bound until the next
+    bound reaches the best distance found, so geoms far from an obstacle cost
+    nothing. Distances of ``cap`` or more read as ``cap``. Needs the geom poses
+    of ``data`` (``mj_kinematics``). ``boxes`` is not used any more (the bounds
+    need each obstacle's shape, read from ``data``); it stays for existing calls.
     """
     obstacles = groups.obstacle_geoms
-    result = np.full(len(obstacles), cap)
     carried = np.flatnonzero(groups.carried)
     if len(obstacles) == 0 or len(carried) == 0:
-        return result
+        return np.full(len(obstacles), cap)
     fromto = np.zeros(6) if fromto is None else fromto
-    centre, half = obstacle_boxes(model, data, groups) if boxes is None else boxes
-    xpos = np.asarray(data.geom_xpos)[carried]
-    outside = np.abs(xpos[:, None, :] - centre[None]) - half[None]  # (r, m, 3)
-    bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))
-    bounds -= np.asarray(model.geom_rbound)[carried, None]
-    order = np.argsort(bounds, axis=0).T.tolist()
-    for j, obstacle in enumerate(obstacles.tolist()):
-        best = cap
-        column = bounds[:, j].tolist()
-        for i in order[j]:
-            if column[i] >= best:
-                break
-            d = mujoco.mj_geomDistance(model, data, int(carried[i]), obstacle, best, fromto)
-            best = min(best, d)
-        result[j] = best
-    return result
+    xpos = np.asarray(data.geom_xpos)[carried][None]
+    bounds = _bounds(model, data, groups, xpos, np.asarray(data.geom_xmat)[carried][None])[0]
+    order = np.argsort(bounds, axis=0)
+    low = np.take_along_axis(bounds, order, axis=0)
+    row = _exact_row(
+        model,
+        data,
+        carried.tolist(),
+        obstacles.tolist(),
+        order.T.tolist(),
+        low.T.tolist(),
+        cap,
+        fromto,
+    )
+    return np.array(row, dtype=float)
+
+
+def clearances_of_states(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    groups: CollisionGroups,
+    qpos: npt.ArrayLike,
+    xpos: npt.ArrayLike,
+    xmat: npt.ArrayLike,
+    cap: float = CLEARANCE_CAP_M,
+) -> FloatArray:
+    """:func:`clearances` of many states at once [m], (N, m).
+
+    The bounds of every state come from the carried geoms' poses given, in one
+    vectorised pass; only a state with a pair whose bound is below ``cap`` is
+    posed again (``qpos`` into ``data``, ``mj_kinematics``) for its exact
+    distances. Each row equals what :func:`clearances` gives in that state.
+
+    Args:
+        model: The model.
+        data: A data of the model to pose (its state is overwritten).
+        groups: The collision groups.
+        qpos: The states, (N, nq); each must pose the geoms as ``xpos`` and
+            ``xmat`` say (the payload included).
+        xpos: Centres of the carried geoms (robot and payload, in geom order) in
+            each state, (N, r, 3) [m].
+        xmat: Their orientations, MuJoCo's ``geom_xmat`` rows, (N, r, 9).
+        cap: Distances of ``cap`` or more read as ``cap`` [m].
+
+    Returns:
+        Shape (N, m).
+    """
+    states = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
+    obstacles = groups.obstacle_geoms
+    carried = np.flatnonzero(groups.carried)
+    out = np.full((len(states), len(obstacles)), cap)
+    if len(obstacles) == 0 or len(carried) == 0 or len(states) == 0:
+        return out
+    centres = np.asarray(xpos, dtype=float).reshape(len(states), len(carried), 3)
+    axes = np.asarray(xmat, dtype=float).reshape(len(states), len(carried), 9)
+    data.qpos[:] = states[0]
+    mujoco.mj_kinematics(model, data)  # the obstacles' poses
+    bounds = _bounds(model, data, groups, centres, axes)  # (N, r, m)
+    order = np.argsort(bounds, axis=1)
+    low = np.take_along_axis(bounds, order, axis=1)
+    near = np.flatnonzero(low[:, 0, :].min(axis=1) < cap).tolist()
+    geoms, targets, fromto = carried.tolist(), obstacles.tolist(), np.zeros(6)
+    # Most often the pair of smallest bound is the nearest and its distance is
+    # below the next bound: one mj_geomDistance per obstacle, the rest of the
+    # order only looked at otherwise.
+    first = carried[order[:, 0, :]].tolist()
+    first_low = low[:, 0, :].tolist()
+    second_low = low[:, 1, :].tolist() if len(carried) > 1 else np.full_like(low[:, 0, :], cap)
+    m = model
+    for k in near:
+        data.qpos[:] = states[k]
+        mujoco.mj_kinematics(m, data)
+        row = out[k]
+        for j, (g, b0, b1, target) in enumerate(
+            zip(first[k], first_low[k], second_low[k], targets, strict=True)
+        ):
+            if b0 >= cap:
+                continue
+            best = min(cap, mujoco.mj_geomDistance(m, data, g, target, cap, fromto))
+            if best > b1:
+                rank, bound = order[k, :, j].tolist(), low[k, :, j].tolist()
+                best = _exact_row(m, data, geoms, [target], [rank], [bound], cap, fromto)[0]
+            row[j] = best
+    return out
 
 
 @dataclass
@@ -262,6 +485,62 @@ class ContactTracker:
         if hit:
             self.obstacle_steps += 1
         return frozenset(hit)
+
+    def update_many(
+        self, time_s: npt.ArrayLike, step: npt.ArrayLike, geoms: IntArray, dist: FloatArray
+    ) -> None:
+        """Record the contacts of many instants at once, in time order.
+
+        The same records as :meth:`update` called instant by instant (first
+        times, worst penetrations, the first hit, steps in contact), classified
+        in one vectorised pass.
+
+        Args:
+            time_s: Simulated time of each contact, (K,) [s], non-decreasing.
+            step: The instant (step) each contact belongs to, (K,).
+            geoms: Geom pairs of the contacts, (K, 2).
+            dist: Their signed distances, (K,) [m].
+        """
+        g = np.asarray(geoms, dtype=np.intp).reshape(-1, 2)
+        if len(g) == 0:
+            return
+        times = np.asarray(time_s, dtype=float).reshape(-1)
+        steps = np.asarray(step).reshape(-1)
+        pen = -np.asarray(dist, dtype=float).reshape(-1)
+        c = classify_contacts(self._groups, g, -pen)
+        pairs = np.where(c.carried_first[:, None], g, g[:, ::-1])
+        ordered = np.sort(g, axis=1)
+        pairs = np.where(c.self_hit[:, None], ordered, pairs)
+        for mask, table in (
+            (c.obstacle, self._obstacle),
+            (c.self_hit, self._self),
+            (c.support & ~c.self_hit, self._support),
+        ):
+            rows = np.flatnonzero(mask)
+            if len(rows) == 0:
+                continue
+            keys, first, inverse = np.unique(
+                pairs[rows], axis=0, return_index=True, return_inverse=True
+            )
+            worst = np.full(len(keys), -np.inf)
+            np.maximum.at(worst, inverse.reshape(-1), pen[rows])
+            for i in np.argsort(first, kind="stable").tolist():
+                key = (int(keys[i, 0]), int(keys[i, 1]))
+                stats = table.get(key)
+                if stats is None:
+                    table[key] = _PairStats(float(times[rows[first[i]]]), float(worst[i]))
+                else:
+                    stats.max_penetration_m = max(stats.max_penetration_m, float(worst[i]))
+        hits = np.flatnonzero(c.obstacle)
+        if len(hits) == 0:
+            return
+        self.obstacle_steps += len(np.unique(steps[hits]))
+        index = c.obstacle_index[hits]
+        for j, k in zip(*np.unique(index, return_index=True), strict=True):
+            self._first_by_obstacle.setdefault(int(j), float(times[hits[k]]))
+        if self._first is None:
+            k = int(hits[0])
+            self._first = (float(times[k]), (int(pairs[k, 0]), int(pairs[k, 1])), int(index[0]))
 
     def _pairs(self, table: dict[tuple[int, int], _PairStats]) -> tuple[ContactPair, ...]:
         name = self._names
@@ -369,9 +648,9 @@ class CollisionChecker:
             raise InvalidInputError(f"base_qpos must be finite with shape ({model.nq},)")
         self._base = base
         self._attach = attach
+        self._payload_geoms = self._payload_frames(attach)
         self._cap = float(cap)
         self._fromto = np.zeros(6)
-        self._boxes: tuple[FloatArray, FloatArray] | None = None
         robot = np.flatnonzero(groups.robot).tolist()
         support = np.flatnonzero(groups.support).tolist()
         self._obstacle_pairs = groups.obstacle_pairs()
@@ -379,6 +658,26 @@ class CollisionChecker:
         self._support_pairs = frozenset(
             pair for r in robot for s in support for pair in ((r, s), (s, r))
         )
+
+    def _payload_frames(
+        self, attach: tuple[int, int] | None
+    ) -> tuple[IntArray, FloatArray, FloatArray]:
+        """The payload body's geoms and their poses in its frame: ids, (k, 3) [m], (k, 3, 3)."""
+        m = self.model
+        if attach is None:
+            return np.zeros(0, dtype=np.intp), np.zeros((0, 3)), np.zeros((0, 3, 3))
+        joint = np.flatnonzero(
+            (np.asarray(m.jnt_qposadr) == attach[0])
+            & (np.asarray(m.jnt_type) == mujoco.mjtJoint.mjJNT_FREE)
+        )
+        if len(joint) != 1:
+            raise InvalidInputError(f"qpos address {attach[0]} is not that of a free joint")
+        body = int(m.jnt_bodyid[joint[0]])
+        geoms = np.flatnonzero(np.asarray(m.geom_bodyid) == body)
+        local = np.empty((len(geoms), 9))
+        for i, g in enumerate(geoms.tolist()):
+            mujoco.mju_quat2Mat(local[i], m.geom_quat[g])
+        return geoms, np.array(m.geom_pos[geoms]), local.reshape(-1, 3, 3)
 
     @property
     def n_joints(self) -> int:
@@ -436,31 +735,32 @@ class CollisionChecker:
         obstacles = g.obstacle_geoms
         count = len(states)
         out = np.full(count, limit)
+        posed = np.empty_like(states)
         xpos = np.empty((count, len(carried), 3))
         for k in range(count):  # pass 1: contacts, and where every geom is
             if any(pair in hits for pair in self._touching(states[k], grasped)):
                 out[k] = -np.inf
+            posed[k] = d.qpos  # the payload held, if it is
             xpos[k] = d.geom_xpos[carried]
         if len(obstacles) == 0 or len(carried) == 0:
             return out
-        if self._boxes is None:
-            self._boxes = obstacle_boxes(m, d, g)
-        centre, half = self._boxes
-        outside = np.abs(xpos[:, :, None, :] - centre[None, None]) - half[None, None]
+        # Bounding spheres against the obstacles' boxes: a few array operations
+        # for the whole batch (the planner asks small batches, many times).
+        centre, half = obstacle_boxes(m, d, g)
+        outside = np.abs(xpos[:, :, None, :] - centre) - half
         bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (N, r, m)
         bounds -= np.asarray(m.geom_rbound)[carried][None, :, None]
-        flat = bounds.reshape(count, -1)
+        flat = bounds.reshape(count, -1)  # (N, r * m)
         order = np.argsort(flat, axis=1)
+        low = np.take_along_axis(flat, order, axis=1)
         pairs = len(obstacles)
         geoms, targets = carried.tolist(), obstacles.tolist()
-        for k in np.flatnonzero((out > -np.inf) & (flat.min(axis=1) < limit)).tolist():
-            d.qpos[:] = states[k]  # pass 2: exact distances of the pairs that may be near
-            if grasped and self._attach is not None:
-                self._hold_payload(*self._attach)
+        for k in np.flatnonzero((out > -np.inf) & (low[:, 0] < limit)).tolist():
+            d.qpos[:] = posed[k]  # pass 2: exact distances of the pairs that may be near
             mujoco.mj_kinematics(m, d)
-            best, row = limit, flat[k].tolist()
-            for index in order[k].tolist():
-                if row[index] >= best:
+            best = limit
+            for index, bound in zip(order[k].tolist(), low[k].tolist(), strict=True):
+                if bound >= best:
                     break
                 i, j = divmod(index, pairs)
                 dist = mujoco.mj_geomDistance(m, d, geoms[i], targets[j], best, self._fromto)
@@ -496,28 +796,32 @@ class CollisionChecker:
     def _check(self, states: FloatArray, grasped: bool) -> CollisionCheck:
         m, d, g = self.model, self._data, self.groups
         count = len(states)
+        carried = np.flatnonzero(g.carried)
         obstacle = np.zeros(count, dtype=bool)
         self_hit = np.zeros(count, dtype=bool)
         support = np.zeros(count, dtype=bool)
-        clearance = np.empty((count, len(g.obstacle_geoms)))
+        posed = np.empty_like(states)
+        xpos = np.empty((count, len(carried), 3))
+        xmat = np.empty((count, len(carried), 9))
         for k in range(count):
             touching = self._touching(states[k], grasped)
             if touching:
                 obstacle[k] = any(pair in self._obstacle_pairs for pair in touching)
                 self_hit[k] = any(pair in self._self_pairs for pair in touching)
                 support[k] = any(pair in self._support_pairs for pair in touching)
-            if self._boxes is None:
-                self._boxes = obstacle_boxes(m, d, g)
-            clearance[k] = clearances(m, d, g, self._cap, self._fromto, self._boxes)
+            posed[k] = d.qpos  # the payload held, if it is
+            xpos[k] = d.geom_xpos[carried]
+            xmat[k] = d.geom_xmat[carried]
+        clearance = clearances_of_states(m, d, g, posed, xpos, xmat, self._cap)
         return CollisionCheck(obstacle, self_hit, support, clearance, g.obstacle_names)
 
     def _touching(self, state: FloatArray, grasped: bool) -> list[tuple[int, int]]:
         """Pose ``state`` (the payload held if ``grasped``) and list the touching geom pairs."""
         m, d = self.model, self._data
         d.qpos[:] = state
+        mujoco.mj_kinematics(m, d)
         if grasped and self._attach is not None:
             self._hold_payload(*self._attach)
-        mujoco.mj_kinematics(m, d)
         mujoco.mj_collision(m, d)
         ncon = int(d.ncon)
         if not ncon:
@@ -531,10 +835,18 @@ class CollisionChecker:
         ]
 
     def _hold_payload(self, qpos_adr: int, site: int) -> None:
-        """Put the payload's free joint at the site (position and orientation)."""
-        m, d = self.model, self._data
-        mujoco.mj_kinematics(m, d)
+        """Put the payload's free joint at the site, and its geoms with it (no second kinematics).
+
+        ``data`` must hold the kinematics of the rest of the state. The payload's
+        geoms get the site's pose composed with their own offsets, as
+        ``mj_kinematics`` would place them (to rounding).
+        """
+        d = self._data
         d.qpos[qpos_adr : qpos_adr + 3] = d.site_xpos[site]
         quat = np.empty(4)
         mujoco.mju_mat2Quat(quat, d.site_xmat[site])
         d.qpos[qpos_adr + 3 : qpos_adr + 7] = quat
+        origin, rot = d.site_xpos[site], d.site_xmat[site].reshape(3, 3)
+        geoms, offset, local = self._payload_geoms
+        d.geom_xpos[geoms] = origin + offset @ rot.T
+        d.geom_xmat[geoms] = (rot @ local).reshape(-1, 9)

@@ -4,7 +4,9 @@ The caller samples its trajectory on the physics time grid (one target per
 step) and gives the commanded tool point of each sample; :func:`rollout`
 steps MuJoCo and records, per step, the whole state, the commanded and actual
 joints, the tool site, actuator forces, the contacts that count
-(:mod:`lynxsim.sim.collision`) and the clearance to each obstacle. The verdicts
+(:mod:`lynxsim.sim.collision`) and the clearance to each obstacle, into
+preallocated arrays; the contacts are classified and the clearances computed
+once the run is over, for all steps at once. The verdicts
 and figures come from :func:`lynxsim.sim.summary.summarize`; videos from
 :func:`lynxsim.sim.recording.render_log`.
 """
@@ -20,7 +22,7 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
-from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances
+from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
 
 __all__ = ["RANGE_TOL", "LogMeta", "PlaybackLog", "StepHook", "mujoco_warnings", "rollout"]
 
@@ -152,6 +154,119 @@ def _check_ranges(
         )
 
 
+def _fresh_run(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    ctrl_adr: IntArray,
+    ctrl: FloatArray,
+    record: _Records,
+    on_step: StepHook | None,
+) -> int:
+    """Step with the positions and contacts brought to each new state (for a hook that reads them).
+
+    Returns:
+        How many steps were recorded (fewer than ``len(ctrl)`` if the state diverged).
+    """
+    qpos, qvel = data.qpos, data.qvel
+    for k in range(len(ctrl)):
+        data.ctrl[ctrl_adr] = ctrl[k]
+        mujoco.mj_step(model, data)
+        if not (np.isfinite(qpos).all() and np.isfinite(qvel).all()):
+            return k
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        record.state(k, data)
+        record.positions(k, data)
+        if on_step is not None:
+            on_step(k, data)
+    return len(ctrl)
+
+
+def _lagged_run(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    ctrl_adr: IntArray,
+    ctrl: FloatArray,
+    record: _Records,
+) -> None:
+    """Step, taking each state's positions and contacts from the next step's own forward pass.
+
+    ``mj_step`` computes positions and contacts of the state it starts from, so
+    after step ``k + 1`` they describe the state reached by step ``k``: the
+    records of step ``k`` are completed then, and those of the last step by one
+    ``mj_kinematics`` + ``mj_collision`` after the loop. No position is computed
+    twice. A state that is not finite is not looked for here: the next
+    ``mj_step`` finds it (and resets, with a warning), which the caller checks.
+    """
+    step, state, positions = mujoco.mj_step, record.state, record.positions
+    for k in range(len(ctrl)):
+        data.ctrl[ctrl_adr] = ctrl[k]
+        step(model, data)
+        if k:
+            positions(k - 1, data)
+        state(k, data)
+    mujoco.mj_kinematics(model, data)
+    mujoco.mj_collision(model, data)
+    positions(len(ctrl) - 1, data)
+
+
+class _Records:
+    """Preallocated per-step records of a rollout; contacts kept raw, classified at the end."""
+
+    def __init__(
+        self, model: mujoco.MjModel, steps: int, tool_site: int, groups: CollisionGroups
+    ) -> None:
+        carried = np.flatnonzero(groups.carried)
+        lo, hi = (int(carried[0]), int(carried[-1]) + 1) if len(carried) else (0, 0)
+        self.carried = carried - lo  # their columns in the geom records
+        self.time = np.empty(steps)
+        self.qpos = np.empty((steps, model.nq))
+        self.force = np.empty((steps, model.nu))
+        self.tool = np.empty((steps, 3))
+        self.geom_xpos = np.empty((steps, hi - lo, 3))
+        self.geom_xmat = np.empty((steps, hi - lo, 9))
+        self._geom_slice = slice(lo, hi)
+        self.contact_start = np.zeros(steps + 1, dtype=np.intp)
+        self._geoms = np.empty((max(16, 8 * steps), 2), dtype=np.intp)
+        self._dist = np.empty(len(self._geoms))
+        self._count = 0
+        self._site = tool_site
+
+    def state(self, k: int, data: mujoco.MjData) -> None:
+        """What the step reached: time, whole state and actuator forces (of the step itself)."""
+        self.time[k] = data.time
+        self.qpos[k] = data.qpos
+        self.force[k] = data.actuator_force
+
+    def positions(self, k: int, data: mujoco.MjData) -> None:
+        """Positions and contacts of step k's state (``data`` must hold them)."""
+        self.tool[k] = data.site_xpos[self._site]
+        self.geom_xpos[k] = data.geom_xpos[self._geom_slice]
+        self.geom_xmat[k] = data.geom_xmat[self._geom_slice]
+        n, p = data.ncon, self._count
+        if n:
+            if p + n > len(self._dist):
+                grow = max(n, len(self._dist))
+                self._geoms = np.concatenate([self._geoms, np.empty((grow, 2), dtype=np.intp)])
+                self._dist = np.concatenate([self._dist, np.empty(grow)])
+            contact = data.contact
+            self._geoms[p : p + n] = contact.geom
+            self._dist[p : p + n] = contact.dist
+            self._count = p + n
+        self.contact_start[k + 1] = self._count
+
+    def contacts(
+        self, groups: CollisionGroups, steps: int
+    ) -> tuple[IntArray, IntArray, FloatArray]:
+        """The contacts that count in the first ``steps`` steps: step, geom pair, distance."""
+        end = int(self.contact_start[steps])
+        geoms, dist = self._geoms[:end], self._dist[:end]
+        step = np.repeat(np.arange(steps), np.diff(self.contact_start[: steps + 1]))
+        c = classify_contacts(groups, geoms, dist)
+        keep = c.obstacle | c.self_hit | c.support
+        return step[keep], geoms[keep], dist[keep]
+
+
 def rollout(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -171,9 +286,13 @@ def rollout(
     The robot is put at rest at ``q_cmd[0]`` and held there for ``presettle_s``
     (not recorded: it lets gravity load the servos), then sample ``k`` is the
     target during step ``k``; after the last sample the final command is held
-    for ``settle_s``. After every step, positions and contacts are brought to
-    the new state (``mj_step`` leaves those of the state it started from), so
-    that every record describes the instant ``data.time`` it is stamped with.
+    for ``settle_s``. Every record describes the instant ``data.time`` it is
+    stamped with: ``mj_step`` leaves the positions and contacts of the state it
+    started from, so those of step ``k`` are read after step ``k + 1`` (no
+    position computed twice; with ``on_step``, or if MuJoCo resets a bad state,
+    they are computed after each step instead, the same records). The
+    clearances are computed after the run for all states at once
+    (:func:`~lynxsim.sim.collision.clearances_of_states`).
 
     Args:
         model: The model.
@@ -187,7 +306,8 @@ def rollout(
         presettle_s: Hold time before it, unrecorded [s].
         gripper_cmd: Gripper opening [m] as a function of time [s], from
             ``-presettle_s`` to the end of the settling.
-        on_step: Called after every recorded step (robot monitors, progress).
+        on_step: Called after every recorded step (robot monitors, progress),
+            with the positions and contacts of the new state in ``data``.
 
     Returns:
         The :class:`PlaybackLog`.
@@ -223,52 +343,40 @@ def rollout(
     data.time = 0.0  # the record starts here; warnings of the hold still count
 
     groups = binding.groups
-    n_obstacles = len(groups.obstacle_geoms)
-    fromto = np.zeros(6)
-    log_qpos = np.empty((steps, model.nq))
-    log_q = np.empty((steps, n))
-    log_tool = np.empty((steps, 3))
-    log_force = np.empty((steps, n))
-    log_t = np.empty(steps)
-    clearance = np.empty((steps, n_obstacles))
-    c_step: list[IntArray] = []
-    c_geoms: list[IntArray] = []
-    c_dist: list[FloatArray] = []
-    diverged_at: float | None = None
+    ctrl_adr = binding.actuator_ids
+    ctrl = np.concatenate([q_cmd, np.repeat(q_cmd[-1:], settle_steps, axis=0)])
+    if gripper is not None and gripper_cmd is not None:
+        ctrl_adr = np.append(ctrl_adr, gripper)
+        opening = [gripper_cmd(k * dt) for k in range(steps)]
+        ctrl = np.column_stack([ctrl, opening])
+    start = mujoco.MjData(model) if on_step is None else None
+    if start is not None:
+        mujoco.mj_copyData(start, model, data)
+    record = _Records(model, steps, binding.tool_site_id, groups)
     recorded = steps
-
-    for k in range(steps):
-        data.ctrl[binding.actuator_ids] = q_cmd[min(k, len(q_cmd) - 1)]
-        if gripper is not None and gripper_cmd is not None:
-            data.ctrl[gripper] = gripper_cmd(k * dt)
-        mujoco.mj_step(model, data)
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_collision(model, data)
-        if not (np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all()):
-            diverged_at = float(data.time)
-            recorded = k
-            break
-        log_t[k] = data.time
-        log_qpos[k] = data.qpos
-        log_q[k] = data.qpos[binding.qpos_adr]
-        log_tool[k] = data.site_xpos[binding.tool_site_id]
-        log_force[k] = data.actuator_force[binding.actuator_ids]
-        ncon = int(data.ncon)
-        if ncon:
-            geoms = np.array(data.contact.geom[:ncon], dtype=np.intp)
-            dist = np.array(data.contact.dist[:ncon])
-            c = classify_contacts(groups, geoms, dist)
-            keep = c.obstacle | c.self_hit | c.support
-            if keep.any():
-                c_step.append(np.full(int(keep.sum()), k, dtype=np.intp))
-                c_geoms.append(geoms[keep])
-                c_dist.append(dist[keep])
-        if n_obstacles:
-            clearance[k] = clearances(model, data, groups, fromto=fromto)
-        if on_step is not None:
-            on_step(k, data)
-
-    cmd = np.concatenate([q_cmd, np.repeat(q_cmd[-1:], settle_steps, axis=0)])[:recorded]
+    if on_step is None:
+        _lagged_run(model, data, ctrl_adr, ctrl, record)
+    clock = np.cumsum(np.full(steps, dt))  # data.time without a reset: dt added per step
+    finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
+    if on_step is not None or not finite or not np.array_equal(record.time, clock):
+        # A bad state: MuJoCo resets it (time included) inside mj_step, so the
+        # positions a lagged record takes would be the reset's. Play again
+        # (deterministic), each state posed on its own, cut where it diverged.
+        if start is not None:
+            mujoco.mj_copyData(data, model, start)
+        record = _Records(model, steps, binding.tool_site_id, groups)
+        recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step)
+    diverged_at = None if recorded == steps else float(data.time)
+    c_step, c_geoms, c_dist = record.contacts(groups, recorded)
+    qpos = record.qpos[:recorded].copy()
+    clearance = clearances_of_states(
+        model,
+        mujoco.MjData(model),
+        groups,
+        qpos,
+        record.geom_xpos[:recorded, record.carried],
+        record.geom_xmat[:recorded, record.carried],
+    )
     ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
     meta = LogMeta(
         task=task,
@@ -280,17 +388,17 @@ def rollout(
     )
     return PlaybackLog(
         meta=meta,
-        time_s=log_t[:recorded],
-        qpos=log_qpos[:recorded],
-        q_cmd=cmd,
-        q=log_q[:recorded],
+        time_s=record.time[:recorded].copy(),
+        qpos=qpos,
+        q_cmd=ctrl[:recorded, :n].copy(),
+        q=qpos[:, binding.qpos_adr],
         tool_ref=ref,
-        tool=log_tool[:recorded],
-        force=log_force[:recorded],
-        clearance_m=clearance[:recorded],
-        contact_step=np.concatenate(c_step) if c_step else np.zeros(0, dtype=np.intp),
-        contact_geoms=np.concatenate(c_geoms) if c_geoms else np.zeros((0, 2), dtype=np.intp),
-        contact_dist=np.concatenate(c_dist) if c_dist else np.zeros(0),
+        tool=record.tool[:recorded].copy(),
+        force=record.force[:recorded, binding.actuator_ids],
+        clearance_m=clearance,
+        contact_step=c_step,
+        contact_geoms=c_geoms,
+        contact_dist=c_dist,
         trajectory_steps=min(len(q_cmd), recorded),
         duration_s=len(q_cmd) * dt,
         settle_s=settle_steps * dt,

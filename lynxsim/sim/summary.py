@@ -37,10 +37,7 @@ def summarize(log: PlaybackLog, metrics: RobotMetrics | None = None) -> RunRepor
     meta = log.meta
     tracker = ContactTracker(meta.geom_names, meta.groups)
     steps = log.contact_step
-    bounds = np.searchsorted(steps, np.arange(log.steps + 1))
-    for k in np.unique(steps).tolist():
-        lo, hi = int(bounds[k]), int(bounds[k + 1])
-        tracker.update(float(log.time_s[k]), log.contact_geoms[lo:hi], log.contact_dist[lo:hi])
+    tracker.update_many(log.time_s[steps], steps, log.contact_geoms, log.contact_dist)
 
     n_traj = log.trajectory_steps
     joint_err = np.abs(log.q[:n_traj] - log.q_cmd[:n_traj])

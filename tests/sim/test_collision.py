@@ -316,3 +316,64 @@ def test_report_names_the_obstacle_hit_first_and_reports_each_obstacle(sphere, f
         assert ball.first_contact_s == verdict.first_time_s < cylinder.first_contact_s
         t_p1, t_p2 = trajectory.waypoint_times[:2]
         assert t_p1 < ball.first_contact_s < t_p2
+
+
+# -------------------- (f) the model's obstacles as they are now, and exact clearances
+
+
+def test_checker_sees_an_obstacle_moved_in_the_model():
+    """Environments move obstacle geoms at reset; the checker must not keep the old place."""
+    model = load_arm_scene(REPORT_SCENE.without_cube())
+    checker = arm_checker(model)
+    q = np.radians([45.0, 90.0, -60.0, -30.0, 0.0])  # reaches towards the cylinder
+    before = checker.check(q)
+    near = checker.min_clearance(q, cap=CLEARANCE_CAP_M)
+    g = int(checker.groups.obstacle_geoms[0])
+    model.geom_pos[g, :2] = (-0.3, -0.3)  # behind the arm
+    after = checker.check(q)
+    assert after.clearance_m[0, 0] > before.clearance_m[0, 0] + 0.1
+    fresh = arm_checker(model).check(q)  # a checker made after the move
+    np.testing.assert_array_equal(after.clearance_m, fresh.clearance_m)
+    np.testing.assert_array_equal(after.obstacle, fresh.obstacle)
+    assert checker.min_clearance(q, cap=CLEARANCE_CAP_M)[0] == fresh.min_clearance_m[0] > near[0]
+
+
+@pytest.mark.parametrize("grasped", [False, True], ids=["cube_on_table", "cube_held"])
+def test_positive_clearances_are_the_smallest_distance_of_any_pair(grasped):
+    """The bounds only skip pairs that cannot be nearest: every positive clearance is exact.
+
+    Against ``mj_geomDistance`` of every carried geom and obstacle, one of each
+    shape, over random joint vectors (the cube's geoms placed without a second
+    kinematics when held).
+    """
+    model = load_arm_scene(Scene(THREE_OBSTACLES.obstacles, cube=REPORT_SCENE.cube))
+    checker = arm_checker(model)
+    rng = np.random.default_rng(3)
+    q = rng.uniform(np.radians([-90, 0, -145, -90, 0]), np.radians([90, 135, 0, 90, 360]), (400, 5))
+    result = checker.check(q, grasped=grasped)
+    smallest = checker.min_clearance(q, grasped=grasped)
+    groups = checker.groups
+    carried = np.flatnonzero(groups.carried).tolist()
+    ids = SceneIds.from_model(model)
+    data, fromto = mujoco.MjData(model), np.zeros(6)
+    positive = 0
+    for k in range(len(q)):
+        data.qpos[:] = model.qpos0
+        data.qpos[list(ids.arm_qpos)] = q[k]
+        mujoco.mj_kinematics(model, data)
+        if grasped:  # the reference: the cube's free joint at the tool site, posed again
+            adr = ids.cube_qpos
+            data.qpos[adr : adr + 3] = data.site_xpos[ids.tool_site]
+            mujoco.mju_mat2Quat(data.qpos[adr + 3 : adr + 7], data.site_xmat[ids.tool_site])
+            mujoco.mj_kinematics(model, data)
+        for j, obstacle in enumerate(groups.obstacle_geoms.tolist()):
+            exact = min(
+                mujoco.mj_geomDistance(model, data, g, obstacle, CLEARANCE_CAP_M, fromto)
+                for g in carried
+            )
+            if exact > 0.0:
+                positive += 1
+                assert_close(result.clearance_m[k, j], exact, atol=CLEARANCE_TOL_M)
+        if not result.in_collision[k] and not result.support[k]:
+            assert smallest[k] == result.min_clearance_m[k]
+    assert positive > 600  # most pairs are apart, some touch

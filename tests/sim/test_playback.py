@@ -10,12 +10,14 @@ import mujoco
 import numpy as np
 import pytest
 
+from lynxsim.arm import tool_pose
 from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LimitViolationError
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import arm_binding, play_arm
+from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sim.collision import CLEARANCE_CAP_M, classify_contacts
 from lynxsim.sim.rollout import rollout
 from lynxsim.tasks import load_task
 from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
@@ -152,3 +154,140 @@ def test_report_round_trips_through_json(tmp_path, pick_and_place):
         "floor_contacts",
         "healthy",
     }
+
+
+# ------------------ records of each instant, taken without posing twice (issue 12)
+
+THREE_OBSTACLES = ROOT / "tasks" / "three_obstacles.toml"
+RECORDED_RUNS = (
+    (PICK_AND_PLACE, TrajectoryKind.QUINTIC),  # stalls against the cylinder
+    (PICK_AND_PLACE, TrajectoryKind.LINE),  # the carried cube hits it
+    (VIA_POINTS, TrajectoryKind.LINE),  # passes it 13 mm apart
+    (THREE_OBSTACLES, TrajectoryKind.RUCKIG),  # a cylinder, a box and a sphere
+)
+
+
+def _command(path: Path, kind: TrajectoryKind):
+    task = load_task(path)
+    model = load_arm_scene(task.scene)
+    trajectory = build_trajectory(task, kind)
+    q_cmd = trajectory.sample(physics_grid(trajectory.duration, model.opt.timestep)).q
+    return model, q_cmd
+
+
+def _play(model, q_cmd, **kwargs):
+    return rollout(
+        model,
+        mujoco.MjData(model),
+        arm_binding(model),
+        q_cmd,
+        tool_pose(q_cmd).position,
+        task="t",
+        trajectory="t",
+        **kwargs,
+    )
+
+
+def _assert_same_log(a, b):
+    for name in (
+        "time_s", "qpos", "q_cmd", "q", "tool_ref", "tool", "force", "clearance_m",
+        "contact_step", "contact_geoms", "contact_dist",
+    ):  # fmt: skip
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name), err_msg=name)
+    assert (a.warnings, a.diverged_at_s, a.trajectory_steps) == (
+        b.warnings,
+        b.diverged_at_s,
+        b.trajectory_steps,
+    )
+
+
+@pytest.mark.parametrize(
+    ("path", "kind"), RECORDED_RUNS, ids=[f"{p.stem}-{k.value}" for p, k in RECORDED_RUNS]
+)
+def test_every_record_describes_its_own_state(path, kind):
+    """Tool, contacts and clearances of each step equal those of its logged state posed alone.
+
+    The reference poses each logged ``qpos`` (``mj_kinematics`` + ``mj_collision``)
+    and measures every carried geom against every obstacle with
+    ``mj_geomDistance``, no bound involved.
+    """
+    model, q_cmd = _command(path, kind)
+    log = _play(model, q_cmd)
+    groups = log.meta.groups
+    carried = np.flatnonzero(groups.carried).tolist()
+    data, fromto = mujoco.MjData(model), np.zeros(6)
+    counted = classify_contacts(groups, log.contact_geoms, log.contact_dist)
+    assert counted.obstacle.any() or path == VIA_POINTS
+    for k in range(log.steps):
+        data.qpos[:] = log.qpos[k]
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        assert np.array_equal(data.site_xpos[arm_binding(model).tool_site_id], log.tool[k])
+        n = data.ncon
+        geoms, dist = np.array(data.contact.geom[:n]), np.array(data.contact.dist[:n])
+        c = classify_contacts(groups, geoms, dist)
+        keep = c.obstacle | c.self_hit | c.support
+        rows = log.contact_step == k
+        np.testing.assert_array_equal(log.contact_geoms[rows], geoms[keep])
+        np.testing.assert_array_equal(log.contact_dist[rows], dist[keep])
+        for j, obstacle in enumerate(groups.obstacle_geoms.tolist()):
+            exact = min(
+                mujoco.mj_geomDistance(model, data, g, obstacle, CLEARANCE_CAP_M, fromto)
+                for g in carried
+            )
+            assert log.clearance_m[k, j] == min(exact, CLEARANCE_CAP_M), (k, j)
+
+
+def test_physics_is_the_same_as_stepping_alone(pick_and_place):
+    """The records never touch the physics: the states equal a bare ctrl + mj_step loop."""
+    model, q_cmd = _command(PICK_AND_PLACE, TrajectoryKind.QUINTIC)
+    log = _play(model, q_cmd, settle_s=0.1)
+    binding = arm_binding(model)
+    data = mujoco.MjData(model)
+    data.qpos[binding.qpos_adr] = q_cmd[0]
+    data.ctrl[binding.actuator_ids] = q_cmd[0]
+    mujoco.mj_forward(model, data)
+    for _ in range(round(0.5 / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+    for k in range(log.steps):
+        data.ctrl[binding.actuator_ids] = q_cmd[min(k, len(q_cmd) - 1)]
+        mujoco.mj_step(model, data)
+        assert np.array_equal(data.qpos, log.qpos[k]), k
+
+
+def test_a_step_hook_sees_each_state_posed_and_changes_nothing():
+    model, q_cmd = _command(PICK_AND_PLACE, TrajectoryKind.QUINTIC)
+    seen = []
+    site = arm_binding(model).tool_site_id
+    with_hook = _play(model, q_cmd, on_step=lambda k, d: seen.append(d.site_xpos[site].copy()))
+    _assert_same_log(with_hook, _play(model, q_cmd))
+    np.testing.assert_array_equal(np.array(seen), with_hook.tool)
+
+
+def test_a_run_that_mujoco_resets_is_recorded_state_by_state():
+    """Servos far too stiff: MuJoCo finds bad accelerations and resets the state in mj_step.
+
+    The records must still describe each logged state (the lagged records are
+    replaced by a replay that poses every state), as with a step hook.
+    """
+    model, q_cmd = _command(PICK_AND_PLACE, TrajectoryKind.QUINTIC)
+    model.actuator_gainprm[:5, 0] *= 1e9
+    model.actuator_biasprm[:5, 1] *= 1e9
+    model.actuator_forcerange[:5] *= 1e9
+    messages: list[str] = []
+    previous = mujoco.get_mju_user_warning()
+    mujoco.set_mju_user_warning(messages.append)  # not into MUJOCO_LOG.TXT
+    try:
+        log = _play(model, q_cmd[:300], settle_s=0.0)
+        hooked = _play(model, q_cmd[:300], settle_s=0.0, on_step=lambda k, d: None)
+    finally:
+        mujoco.set_mju_user_warning(previous)
+    assert log.warnings["badqacc"]
+    assert any("QACC" in m for m in messages)
+    assert (np.diff(log.time_s) <= 0.0).any()  # reset during the record: time starts again
+    _assert_same_log(log, hooked)
+    data = mujoco.MjData(model)
+    for k in range(log.steps):
+        data.qpos[:] = log.qpos[k]
+        mujoco.mj_kinematics(model, data)
+        assert np.array_equal(data.site_xpos[arm_binding(model).tool_site_id], log.tool[k])
