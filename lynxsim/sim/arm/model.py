@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import mujoco
 import numpy as np
@@ -40,10 +41,12 @@ __all__ = [
     "TABLE_GEOM",
     "TOOL_SITE",
     "VISUAL_GROUP",
+    "ObstacleGeom",
     "SceneIds",
     "load_arm_model",
     "load_arm_scene",
     "load_arm_spec",
+    "obstacle_geom",
     "table_top_z",
 ]
 
@@ -93,40 +96,62 @@ def table_top_z(spec: mujoco.MjSpec) -> float:
     return float(table.pos[2] + table.size[2])
 
 
+class ObstacleGeom(NamedTuple):
+    """An obstacle as a MuJoCo geom: what the spec and the slots write.
+
+    Attributes:
+        type: The geom type (a :class:`mujoco.mjtGeom` value as an int).
+        size: MuJoCo's size triple (half extents, radius, half height) [m].
+        pos: Centre of the geom in the world (x, y, z) [m].
+        quat: Orientation (w, x, y, z).
+    """
+
+    type: int
+    size: tuple[float, float, float]
+    pos: tuple[float, float, float]
+    quat: tuple[float, float, float, float]
+
+
+def obstacle_geom(obstacle: Obstacle) -> ObstacleGeom:
+    """The geom of an obstacle: standing obstacles are centred half their height up."""
+    x, y, z = obstacle.position
+    upright = (1.0, 0.0, 0.0, 0.0)
+    if isinstance(obstacle, Cylinder):
+        half = 0.5 * obstacle.height
+        return ObstacleGeom(
+            int(mujoco.mjtGeom.mjGEOM_CYLINDER),
+            (obstacle.radius, half, 0.0),
+            (x, y, z + half),
+            upright,
+        )
+    if isinstance(obstacle, Box):
+        half_z = 0.5 * obstacle.size[2]
+        yaw = 0.5 * obstacle.yaw
+        return ObstacleGeom(
+            int(mujoco.mjtGeom.mjGEOM_BOX),
+            (0.5 * obstacle.size[0], 0.5 * obstacle.size[1], half_z),
+            (x, y, z + half_z),
+            (math.cos(yaw), 0.0, 0.0, math.sin(yaw)),
+        )
+    return ObstacleGeom(
+        int(mujoco.mjtGeom.mjGEOM_SPHERE), (obstacle.radius, 0.0, 0.0), (x, y, z), upright
+    )
+
+
 def _add_obstacle(spec: mujoco.MjSpec, obstacle: Obstacle) -> None:
     if spec.geom(obstacle.name) is not None or spec.body(obstacle.name) is not None:
         raise InvalidInputError(
             f"obstacle name {obstacle.name!r} is taken by a part of the arm's scene; rename it"
         )
-    x, y, z = obstacle.position
-    default = spec.find_default(OBSTACLE_CLASS)
-    if isinstance(obstacle, Cylinder):
-        half = 0.5 * obstacle.height
-        spec.worldbody.add_geom(
-            default,
-            name=obstacle.name,
-            type=mujoco.mjtGeom.mjGEOM_CYLINDER,
-            size=[obstacle.radius, half, 0.0],
-            pos=[x, y, z + half],
-        )
-    elif isinstance(obstacle, Box):
-        half_z = 0.5 * obstacle.size[2]
-        spec.worldbody.add_geom(
-            default,
-            name=obstacle.name,
-            type=mujoco.mjtGeom.mjGEOM_BOX,
-            size=[0.5 * obstacle.size[0], 0.5 * obstacle.size[1], half_z],
-            pos=[x, y, z + half_z],
-            quat=[math.cos(0.5 * obstacle.yaw), 0.0, 0.0, math.sin(0.5 * obstacle.yaw)],
-        )
-    else:
-        spec.worldbody.add_geom(
-            default,
-            name=obstacle.name,
-            type=mujoco.mjtGeom.mjGEOM_SPHERE,
-            size=[obstacle.radius, 0.0, 0.0],
-            pos=[x, y, z],
-        )
+    geom = obstacle_geom(obstacle)
+    spec.worldbody.add_geom(
+        spec.find_default(OBSTACLE_CLASS),
+        name=obstacle.name,
+        type=mujoco.mjtGeom(geom.type),
+        size=list(geom.size),
+        pos=list(geom.pos),
+        quat=list(geom.quat),
+    )
 
 
 def load_arm_spec(scene: Scene = REPORT_SCENE) -> mujoco.MjSpec:

@@ -6,6 +6,7 @@ from collections.abc import Callable
 
 import mujoco
 import numpy as np
+import numpy.typing as npt
 
 from lynxsim.arm import tool_pose
 from lynxsim.sim.arm.model import SceneIds
@@ -30,15 +31,18 @@ def arm_binding(model: mujoco.MjModel) -> RobotBinding:
     )
 
 
-def arm_checker(model: mujoco.MjModel) -> CollisionChecker:
+def arm_checker(model: mujoco.MjModel, base_qpos: npt.ArrayLike | None = None) -> CollisionChecker:
     """A :class:`~lynxsim.sim.collision.CollisionChecker` of the arm's five joints.
 
-    The fingers and the cube stay as in the model's ``qpos0`` (the cube at its
-    start) unless ``check(..., grasped=True)`` puts the cube at the tool point.
+    The fingers and the cube stay as in ``base_qpos`` (default the model's
+    ``qpos0``: the cube at its start) unless ``check(..., grasped=True)`` puts
+    the cube at the tool point.
     """
     ids = SceneIds.from_model(model)
     attach = None if ids.cube_qpos is None else (ids.cube_qpos, ids.tool_site)
-    return CollisionChecker(model, ids.collision_groups(model), ids.arm_qpos, attach=attach)
+    return CollisionChecker(
+        model, ids.collision_groups(model), ids.arm_qpos, base_qpos=base_qpos, attach=attach
+    )
 
 
 def physics_grid(duration_s: float, dt: float) -> np.ndarray:
