@@ -1,7 +1,5 @@
 """``python -m lynxsim`` runs the command line."""
 
-import sys
+from lynxsim.cli import run
 
-from lynxsim.cli import main
-
-sys.exit(main())
+run()

@@ -56,6 +56,8 @@ MAX_EPISODES = 1_000_000
 """Most episodes of one command."""
 MAX_CONTROL_DT_S = 1.0
 """Longest control period of an environment [s]."""
+MAX_RANDOM_OBSTACLES = 4
+"""Most obstacles an env episode with randomised obstacles may have."""
 MAX_STEPS = 100_000_000
 """Most physics steps of one run (about 55 h of simulated time at 2 ms)."""
 

@@ -9,6 +9,7 @@ stderr and exit non-zero, never a traceback.
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import sys
 import threading
@@ -16,10 +17,10 @@ from collections.abc import Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from lynxsim.cli import arm, demo, env, plan, play, rrr, traj
+from lynxsim.cli import arm, dataset, demo, env, plan, play, rrr, traj
 from lynxsim.errors import LynxsimError
 
-__all__ = ["build_parser", "main"]
+__all__ = ["build_parser", "main", "run"]
 
 EXIT_USAGE = 2
 EXIT_ERROR = 1
@@ -63,7 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
         "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
     )
     sub = parser.add_subparsers(required=True, parser_class=_OneLineParser)
-    for module in (arm, traj, plan, play, rrr, demo, env):
+    for module in (arm, traj, plan, play, rrr, demo, env, dataset):
         module.register(sub)
     return parser
 
@@ -100,6 +101,22 @@ def main(argv: Sequence[str] | None = None) -> int:
         if in_main_thread:
             signal.signal(signal.SIGTERM, previous)
     return code
+
+
+def run() -> NoReturn:
+    """The ``lynxsim`` program: :func:`main`, then exit with its code.
+
+    After Ctrl-C or SIGTERM (the partial outputs already removed) the process
+    ends at once, skipping the interpreter's shutdown: objects of a native
+    library interrupted mid-call (an OMPL search) would otherwise be reported
+    as leaked on stderr, breaking the one-line rule.
+    """
+    code = main()
+    if code in (130, 128 + signal.SIGTERM):
+        sys.stdout.flush()
+        sys.stderr.flush()
+        os._exit(code)
+    sys.exit(code)
 
 
 def _one_line(exc: BaseException) -> str:

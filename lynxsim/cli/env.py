@@ -6,8 +6,9 @@ import argparse
 import sys
 from pathlib import Path
 
-from lynxsim.bounds import MAX_EPISODES
-from lynxsim.cli.units import bounded_int, seed_int
+from lynxsim.bounds import MAX_EPISODES, MAX_RANDOM_OBSTACLES
+from lynxsim.cli.units import bounded_float, bounded_int, count_range, seed_int
+from lynxsim.envs.noise import MAX_NOISE
 from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
 
 __all__ = ["register"]
@@ -18,7 +19,15 @@ def _run(args: argparse.Namespace) -> int:
 
     from lynxsim.envs.evaluation import EpisodeStats, evaluate
 
-    env_kwargs = {"obstacles": ()} if args.no_obstacle else {}
+    env_kwargs: dict[str, object] = {}
+    scene = ""
+    if args.no_obstacle:
+        env_kwargs, scene = {"obstacles": ()}, ", no obstacle"
+    elif args.random_obstacles is not None:
+        fewest, most = args.random_obstacles
+        env_kwargs = {"random_obstacles": args.random_obstacles}
+        number = str(fewest) if fewest == most else f"{fewest}-{most}"
+        scene = f", {number} random obstacles per episode"
     done = successes = 0
     with tqdm(total=args.episodes, unit="ep", disable=args.quiet, file=sys.stderr) as bar:
 
@@ -37,12 +46,13 @@ def _run(args: argparse.Namespace) -> int:
             video=args.video,
             video_episodes=args.video_episodes,
             env_kwargs=env_kwargs,
+            action_noise=args.action_noise,
             on_episode=on_episode,
         )
     last = args.seed + args.episodes - 1
     print(
         f"{args.env}, {args.policy} policy, {args.episodes} episodes (seeds {args.seed}..{last})"
-        f"{', no obstacle' if args.no_obstacle else ''}"
+        f"{scene}{f', action noise {args.action_noise:g}' if args.action_noise else ''}"
     )
     print(f"  success rate     {summary.success_rate:.1%} (last step of each episode)")
     print(f"  mean return      {summary.mean_return:.2f}")
@@ -81,6 +91,23 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default=1,
         help="episodes recorded into --video (default 1)",
     )
-    p.add_argument("--no-obstacle", action="store_true", help="remove the cylinder obstacle")
+    scene = p.add_mutually_exclusive_group()
+    scene.add_argument("--no-obstacle", action="store_true", help="remove the cylinder obstacle")
+    scene.add_argument(
+        "--random-obstacles",
+        type=count_range(0, MAX_RANDOM_OBSTACLES),
+        default=None,
+        metavar="N|LO-HI",
+        help="instead of the cylinder, N (or LO to HI) random obstacles drawn at every reset "
+        f"(at most {MAX_RANDOM_OBSTACLES})",
+    )
+    p.add_argument(
+        "--action-noise",
+        type=bounded_float(0.0, MAX_NOISE),
+        default=0.0,
+        metavar="F",
+        help="Gaussian noise on every action: standard deviation F times the action range "
+        f"(0.1: 0.2 on [-1, 1]), clipped, seeded per episode; 0 to {MAX_NOISE:g} (default 0)",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_run)

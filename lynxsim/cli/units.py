@@ -124,6 +124,22 @@ def bounded_int(low: int, high: int) -> Callable[[str], int]:
     return parse
 
 
+def count_range(low: int, high: int) -> Callable[[str], tuple[int, int]]:
+    """Argparse type: ``N`` or ``LO-HI``, integers with ``low <= LO <= HI <= high``."""
+    one = bounded_int(low, high)
+
+    def parse(text: str) -> tuple[int, int]:
+        first, dash, last = text.partition("-")
+        fewest = one(first)
+        most = one(last) if dash else fewest
+        if most < fewest:
+            raise argparse.ArgumentTypeError(f"must be N or LO-HI with LO <= HI, got {text[:40]}")
+        return fewest, most
+
+    parse.__name__ = "count range"
+    return parse
+
+
 seed_int = bounded_int(0, MAX_SEED)
 """Argparse type: a random seed, 0 to 2**63 - 1."""
 

@@ -1,4 +1,8 @@
-"""Gymnasium environments of the arm: ``LynxPickAndPlace-v0`` and ``LynxReach-v0``.
+"""Gymnasium environments of the arm: ``LynxPickAndPlace-v1`` and ``LynxReach-v1``.
+
+``-v0`` of each stays registered: it holds the previous tool target when a
+request is out of reach, where ``-v1`` takes the feasible target nearest the
+request (:class:`~lynxsim.envs.control.TargetFallback`).
 
 Importing this package registers the envs with Gymnasium (as Gymnasium-Robotics
 does)::
@@ -7,9 +11,9 @@ does)::
     import lynxsim.envs
 
     gym.register_envs(lynxsim.envs)  # a no-op that keeps linters from removing the import
-    env = gym.make("LynxPickAndPlace-v0")
+    env = gym.make("LynxPickAndPlace-v1")
 
-or, with no import, ``gym.make("lynxsim.envs:LynxPickAndPlace-v0")``.
+or, with no import, ``gym.make("lynxsim.envs:LynxPickAndPlace-v1")``.
 
 The import is light (registration only: Gymnasium, no MuJoCo); the env classes, the
 scripted experts and the evaluation helpers load, with MuJoCo, on first use.
@@ -20,10 +24,17 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID, REACH_ID, register_envs
+from lynxsim.envs.registration import (
+    ENV_IDS,
+    LATEST_ENV_IDS,
+    PICK_AND_PLACE_ID,
+    REACH_ID,
+    register_envs,
+)
 
 __all__ = [
     "ENV_IDS",
+    "LATEST_ENV_IDS",
     "PICK_AND_PLACE_ID",
     "REACH_ID",
     "EpisodeStats",

@@ -16,7 +16,8 @@ from __future__ import annotations
 import enum
 import math
 from collections.abc import Sequence
-from typing import Any, ClassVar, Literal
+from dataclasses import replace
+from typing import Any, ClassVar, Literal, NamedTuple
 
 import gymnasium as gym
 import numpy as np
@@ -29,10 +30,16 @@ import lynxsim.sim  # noqa: F401
 import mujoco
 
 from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
-from lynxsim.bounds import MAX_CONTROL_DT_S, MAX_COORDINATE_M, check_range
+from lynxsim.bounds import (
+    MAX_CONTROL_DT_S,
+    MAX_COORDINATE_M,
+    MAX_RANDOM_OBSTACLES,
+    check_range,
+)
 from lynxsim.envs.control import (
     ControlMode,
     JointSpaceController,
+    TargetFallback,
     TargetStatus,
     ToolSpaceController,
 )
@@ -45,15 +52,27 @@ from lynxsim.envs.workspace import (
     clear_of_obstacle,
     sample_points,
     top_down_reachable,
+    work_column,
 )
 from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
 from lynxsim.inputs import count, real_array
+from lynxsim.random_scenes import random_obstacles
 from lynxsim.scene import REPORT_CUBE, REPORT_CYLINDER, Box, Cylinder, Obstacle, Scene, Sphere
 from lynxsim.sim.arm.model import SceneIds, load_arm_spec, table_top_z
+from lynxsim.sim.arm.playback import arm_checker
+from lynxsim.sim.arm.slots import ObstacleSlots, add_obstacle_slots
 from lynxsim.sim.arm.task import GRIPPER_OPEN_M
+from lynxsim.sim.collision import CollisionChecker
 from lynxsim.sim.render import Quality, RenderSettings
 
-__all__ = ["READY_TOOL_POSE", "CollisionCheck", "LynxArmEnv", "check_control_dt"]
+__all__ = [
+    "READY_TOOL_POSE",
+    "WORK_CLEARANCE_M",
+    "CollisionCheck",
+    "LynxArmEnv",
+    "WorkColumn",
+    "check_control_dt",
+]
 
 FloatArray = npt.NDArray[np.float64]
 Obs = dict[str, FloatArray]
@@ -75,6 +94,27 @@ _MAX_FRAME_PX = 16_384
 """Largest frame side accepted before the model's off-screen buffer is known [px]."""
 _MAX_PENALTY = 1e6
 """Largest collision penalty (rewards are -1..0 or minus metres)."""
+WORK_CLEARANCE_M = 0.015
+"""Clearance from every randomised obstacle that the arm keeps at the ready pose and
+wherever it works at the cube and the goal (:func:`~lynxsim.envs.workspace.work_column`) [m]."""
+_OBSTACLE_GAP_M = 0.06
+"""Least distance from a randomised obstacle to the cube, the goal and the ready tool point [m]."""
+_MAX_SCENE_DRAWS = 200
+"""Scenes drawn at most per reset before giving up."""
+
+
+class WorkColumn(NamedTuple):
+    """Where the arm works at a task point: the vertical above it, gripper down.
+
+    Attributes:
+        point: The lowest tool point, shape (3,) [m].
+        top_z: Height up to which the arm rises there [m].
+        grasped: Whether it holds the cube there.
+    """
+
+    point: FloatArray
+    top_z: float
+    grasped: bool
 
 
 class CollisionCheck(enum.Enum):
@@ -155,10 +195,16 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         render_mode: None, ``"rgb_array"`` (off-screen) or ``"human"`` (a passive
             :mod:`mujoco.viewer` window; needs a display).
         control: ``"tool"`` (tool-space deltas through the IK) or ``"joint"``.
+        target_fallback: What a tool request the IK cannot reach does: ``"nearest"``
+            (the feasible target nearest it; ``-v1``) or ``"hold"`` (the previous
+            target; ``-v0``); see :class:`~lynxsim.envs.control.TargetFallback`.
         reward_type: ``"sparse"`` or ``"dense"``.
         distance_threshold: Success radius around the goal [m].
-        obstacles: The obstacles (:mod:`lynxsim.scene`; default: the report's cylinder;
-            ``()`` for none).
+        obstacles: The obstacles (:mod:`lynxsim.scene`; default: the report's cylinder,
+            or none with ``random_obstacles``; ``()`` for none).
+        random_obstacles: ``(fewest, most)`` obstacles (or one number) drawn anew at
+            every reset, at most :data:`~lynxsim.bounds.MAX_RANDOM_OBSTACLES`; None (default) keeps
+            ``obstacles`` fixed. Exclusive with ``obstacles``.
         collision_penalty: Subtracted from the reward on a step with arm–obstacle
             contact, >= 0.
         terminate_on_collision: End the episode on arm–obstacle contact.
@@ -170,7 +216,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         width: Frame width [px].
         height: Frame height [px].
         camera: Camera of the scene (``"front"`` or ``"top"``).
-        render_quality: ``"fast"`` (no shadows) or ``"default"``.
+        render_quality: ``"fast"`` (no shadows), ``"medium"`` (shadows) or ``"default"``
+            (shadows and multisampling).
 
     Raises:
         InvalidInputError: A bad argument (the message names it and the valid choices).
@@ -190,9 +237,11 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         *,
         render_mode: str | None = None,
         control: Literal["tool", "joint"] | ControlMode = "tool",
+        target_fallback: Literal["nearest", "hold"] | TargetFallback = "nearest",
         reward_type: Literal["sparse", "dense"] | RewardType = "sparse",
         distance_threshold: float = 0.025,
-        obstacles: Sequence[Obstacle] = (REPORT_CYLINDER,),
+        obstacles: Sequence[Obstacle] | None = None,
+        random_obstacles: int | tuple[int, int] | None = None,
         collision_penalty: float = 0.0,
         terminate_on_collision: bool = False,
         collision_check: Literal["control_step", "physics_step"] | CollisionCheck = "control_step",
@@ -203,7 +252,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         width: int = 640,
         height: int = 480,
         camera: str = "front",
-        render_quality: Literal["fast", "default"] = "fast",
+        render_quality: Literal["fast", "medium", "default"] = "fast",
     ) -> None:
         quality = _enum(Quality, render_quality, "render_quality")
         if not isinstance(camera, str):
@@ -212,6 +261,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         height = count(height, "height", 1, _MAX_FRAME_PX)
         settings = RenderSettings(width=width, height=height, camera=camera, quality=quality)
         self.control = _enum(ControlMode, control, "control")
+        fallback = _enum(TargetFallback, target_fallback, "target_fallback")
         self.reward_type = _enum(RewardType, reward_type, "reward_type")
         self.collision_check = _enum(CollisionCheck, collision_check, "collision_check")
         self.distance_threshold = _real(
@@ -242,20 +292,30 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
                 f"render_mode must be None or one of {list(RENDER_MODES)}, got {render_mode!r}"
             )
         self.render_mode = render_mode
+        self.random_obstacles = _obstacle_range(random_obstacles)
+        if obstacles is None:
+            obstacles = (REPORT_CYLINDER,) if self.random_obstacles is None else ()
+        elif self.random_obstacles is not None:
+            raise InvalidInputError("give obstacles or random_obstacles, not both")
         if not isinstance(obstacles, list | tuple) or not all(
             isinstance(o, Cylinder | Box | Sphere) for o in obstacles
         ):
             raise InvalidInputError(
                 f"obstacles must be a sequence of Cylinder, Box or Sphere, got {obstacles!r}"
             )
-        cube = REPORT_CUBE if self._HAS_CUBE else None
-        self.scene = Scene(tuple(obstacles), cube=cube)
-        self.obstacles = self.scene.obstacles
-
-        spec = load_arm_spec(self.scene)
+        self._cube_spec = REPORT_CUBE if self._HAS_CUBE else None
+        self._obstacles: tuple[Obstacle, ...] = tuple(obstacles)
+        spec = load_arm_spec(Scene(self._obstacles, cube=self._cube_spec))
+        if self.random_obstacles is not None:
+            add_obstacle_slots(spec, self.random_obstacles[1])
         self.table_top_z = table_top_z(spec)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
+        self._slots = (
+            None if self.random_obstacles is None else ObstacleSlots.from_model(self.model)
+        )
+        if self._slots is not None:
+            self._slots.place(())
         self.frame_skip = check_control_dt(control_dt, float(self.model.opt.timestep))
         _check_frame(self.model, settings)
         fps = self._control_rate = 1.0 / self.dt
@@ -274,6 +334,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
                 _TARGET_BOX_LOWER,
                 _TARGET_BOX_UPPER,
                 max_joint_jump=_MAX_JOINT_JUMP_RAD,
+                fallback=fallback,
             )
             n_arm = 4
         else:
@@ -296,6 +357,9 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         if q_ready is None:  # pragma: no cover - a property of the arm, tested at reset
             raise LynxsimError(f"the ready pose is unreachable ({status.name})")
         self._q_ready = q_ready
+        base = self.model.qpos0.copy()
+        base[self._finger_qpos] = 0.5 * GRIPPER_OPEN_M
+        self._checker = arm_checker(self.model, base)
         self._set_goal(np.zeros(3))
         self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
@@ -315,6 +379,36 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._arm_obstacle_pairs = groups.obstacle_pairs()
         self._has_obstacle = bool(len(groups.obstacle_geoms))
         self._goal_mark = m.site(_GOAL_MARK_SITE).id
+
+    @property
+    def obstacles(self) -> tuple[Obstacle, ...]:
+        """The obstacles of the episode (drawn at reset with ``random_obstacles``)."""
+        return self._obstacles
+
+    @property
+    def scene(self) -> Scene:
+        """The scene now: the episode's obstacles, and the cube where it is."""
+        cube = self._cube_spec
+        adr = self.ids.cube_qpos
+        if cube is not None and adr is not None:
+            w, _, _, z = self.data.qpos[adr + 3 : adr + 7].tolist()
+            x, y, h = self.data.qpos[adr : adr + 3].tolist()
+            cube = replace(cube, position=(x, y, h), yaw=2.0 * math.atan2(z, w))
+        return Scene(self._obstacles, cube=cube)
+
+    @property
+    def collision_checker(self) -> CollisionChecker:
+        """Collision verdicts and clearances of arm configurations in this env's scene.
+
+        Kinematics only, on a private ``MjData``; the gripper open, the cube held at
+        the tool point with ``grasped=True``. It sees the episode's obstacles.
+        """
+        return self._checker
+
+    @property
+    def q_ready(self) -> tuple[float, ...]:
+        """Joints of the ready pose (:data:`READY_TOOL_POSE`), 5 values [rad]."""
+        return tuple(self._q_ready)
 
     @property
     def controller(self) -> ToolSpaceController | JointSpaceController:
@@ -413,18 +507,79 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._controller.reset(q)
         d.ctrl[self._arm_act] = q
         d.ctrl[self._grip_act] = GRIPPER_OPEN_M
-        self._sample_task()
+        if self._slots is None:
+            self._sample_task()
+        else:
+            self._sample_scene(self._slots)
         mujoco.mj_forward(m, d)
         x, y, z, _ = tool_pose_of(q)
         self._tool_now = (x, y, z)
         obs = self._observation()
         if self.render_mode == "human":
             self.render()
-        return obs, self._info(obs, False, TargetStatus.ACCEPTED)
+        return obs, self._info(obs, False, TargetStatus.ACCEPTED, held=False)
 
     def _sample_task(self) -> None:
         """Place the cube (in ``data.qpos``) and set the goal, drawing from ``np_random``."""
         raise NotImplementedError
+
+    def _work_columns(self) -> list[WorkColumn]:
+        """Where the arm works in the episode drawn (default: at the goal, empty-handed)."""
+        return [WorkColumn(self._goal.copy(), float(self._goal[2]), False)]
+
+    def _sample_scene(self, slots: ObstacleSlots) -> None:
+        """Draw the task, then obstacles that leave the arm room to work (``random_obstacles``).
+
+        The obstacles keep :data:`_OBSTACLE_GAP_M` from the cube, the goal and the
+        ready tool point, and the arm keeps :data:`WORK_CLEARANCE_M` from them at the
+        ready pose and along every :meth:`_work_columns`; scenes that fail are drawn
+        again.
+
+        Raises:
+            LynxsimError: No such scene in :data:`_MAX_SCENE_DRAWS` draws.
+        """
+        assert self.random_obstacles is not None
+        fewest, most = self.random_obstacles
+        rng = self.np_random
+        ready = np.array(READY_TOOL_POSE[:3])
+        for _ in range(_MAX_SCENE_DRAWS):
+            self._set_obstacles(slots, ())
+            self._sample_task()
+            columns = self._work_columns()
+            number = int(rng.integers(fewest, most + 1))
+            keep = [ready.tolist(), *(c.point.tolist() for c in columns)]
+            try:
+                obstacles = random_obstacles(rng, number, keep_free=keep, gap_m=_OBSTACLE_GAP_M)
+            except InvalidInputError:  # no room around these points: draw them again
+                continue
+            self._set_obstacles(slots, obstacles)
+            if self._workable(columns):
+                return
+        raise LynxsimError(
+            f"no scene with {fewest}..{most} obstacles left the arm room to work in "
+            f"{_MAX_SCENE_DRAWS} draws"
+        )
+
+    def _set_obstacles(self, slots: ObstacleSlots, obstacles: Sequence[Obstacle]) -> None:
+        slots.place(obstacles)
+        self._obstacles = tuple(obstacles)
+
+    def _workable(self, columns: list[WorkColumn]) -> bool:
+        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`."""
+        groups: dict[bool, list[FloatArray]] = {False: [np.array([self._q_ready])], True: []}
+        for column in columns:
+            q = work_column(column.point, column.top_z, self._q_ready)
+            if q is None:
+                return False
+            groups[column.grasped].append(q)
+        for grasped, parts in groups.items():
+            if parts:
+                clearance = self._checker.min_clearance(
+                    np.concatenate(parts), grasped=grasped, cap=WORK_CLEARANCE_M
+                )
+                if clearance.min() < WORK_CLEARANCE_M:
+                    return False
+        return True
 
     def _draw_point(
         self, region: PolarRegion, away_from: npt.ArrayLike | None = None
@@ -487,6 +642,7 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
             raise NonFiniteInputError(f"action must be finite, got {values}")
         values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
         ctrl = self.data.ctrl
+        before = self._controller.target
         status = self._controller.apply(values)
         ctrl[self._arm_act] = self._controller.q_cmd
         if self._GRIPPER_ACTION:
@@ -494,13 +650,15 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         collision = self._simulate()
 
         obs = self._observation()
-        info = self._info(obs, collision, status)
+        info = self._info(obs, collision, status, held=self._controller.target == before)
         terminated = collision and self.terminate_on_collision
         if self.render_mode == "human":
             self.render()
         return obs, info["reward_goal"] + info["reward_collision"], terminated, False, info
 
-    def _info(self, obs: Obs, collision: bool, status: TargetStatus) -> dict[str, Any]:
+    def _info(
+        self, obs: Obs, collision: bool, status: TargetStatus, *, held: bool
+    ) -> dict[str, Any]:
         """The info dict of a step (and, with no collision and status ACCEPTED, of a reset)."""
         d = goal_distance(obs["achieved_goal"], self._goal)
         distance = float(d)
@@ -512,7 +670,9 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
             "reward_goal": reward_goal,
             "reward_collision": -self.collision_penalty if collision else 0.0,
             "target_status": int(status),
-            "target_held": status is not TargetStatus.ACCEPTED,
+            "target_held": status is not TargetStatus.ACCEPTED and held,
+            "target_shortfall_m": self._controller.shortfall_m,
+            "target_shortfall_rad": self._controller.shortfall_rad,
         }
 
     def _simulate(self) -> bool:
@@ -585,6 +745,25 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
     def close(self) -> None:
         """Free the renderer and close the viewer window, if any."""
         self._renderer.close()
+
+
+def _obstacle_range(value: object) -> tuple[int, int] | None:
+    """``random_obstacles`` as ``(fewest, most)``, or None.
+
+    Raises:
+        InvalidInputError: Not None, a count or a pair of counts in order, within
+            0..:data:`~lynxsim.bounds.MAX_RANDOM_OBSTACLES`.
+    """
+    if value is None:
+        return None
+    pair = value if isinstance(value, tuple | list) else (value, value)
+    if len(pair) != 2:
+        raise InvalidInputError(
+            f"random_obstacles must be a count or (fewest, most), got {value!r}"
+        )
+    fewest = count(pair[0], "random_obstacles (fewest)", 0, MAX_RANDOM_OBSTACLES)
+    most = count(pair[1], "random_obstacles (most)", fewest, MAX_RANDOM_OBSTACLES)
+    return fewest, most
 
 
 def _check_frame(model: mujoco.MjModel, settings: RenderSettings) -> None:

@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.envs.expert import PickAndPlaceExpert, ReachExpert
+from lynxsim.envs.noise import action_noise_std, add_noise, noise_generator
 from lynxsim.envs.pick_and_place import PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.registration import PICK_AND_PLACE_ID
@@ -154,19 +155,27 @@ def run_episode(
     seed: int | None = None,
     *,
     sink: FrameSink | None = None,
+    action_noise: float = 0.0,
 ) -> EpisodeStats:
     """Run one episode until it terminates or is truncated.
 
     Args:
         env: The env; it must be time-limited (``gym.make`` adds the limit).
         policy: The policy (reset here).
-        seed: Seed of ``env.reset``.
+        seed: Seed of ``env.reset`` (and of the action noise; None: no noise).
         sink: Where rendered frames go (the env needs ``render_mode="rgb_array"``);
             one frame after the reset and one after every step.
+        action_noise: Gaussian noise on every action, as a fraction of the action
+            range (:mod:`lynxsim.envs.noise`); needs a seed when not 0.
 
     Returns:
         The :class:`EpisodeStats`.
     """
+    std = action_noise_std(env.action_space, action_noise) if action_noise else None
+    if std is not None and seed is None:
+        raise InvalidInputError("action noise needs a seed (its generator is the episode's)")
+    rng = noise_generator(0 if seed is None else seed)
+    space = env.action_space
     obs, _ = env.reset(seed=seed)
     policy.reset()
     frames = 0
@@ -184,7 +193,10 @@ def run_episode(
     total, steps, collisions, first = 0.0, 0, 0, None
     success = False
     while True:
-        obs, reward, terminated, truncated, info = env.step(policy(obs))
+        action = policy(obs)
+        if std is not None and isinstance(space, gym.spaces.Box):
+            action = add_noise(action, space, std, rng)
+        obs, reward, terminated, truncated, info = env.step(action)
         steps += 1
         total += float(reward)
         collisions += bool(info["collision"])
@@ -215,6 +227,7 @@ def evaluate(
     video: str | os.PathLike[str] | None = None,
     video_episodes: int = 1,
     env_kwargs: Mapping[str, Any] | None = None,
+    action_noise: float = 0.0,
     on_episode: Callable[[EpisodeStats], None] | None = None,
 ) -> EvaluationSummary:
     """Run seeded episodes (seeds ``seed``, ``seed + 1``, ...) and summarise them.
@@ -230,6 +243,8 @@ def evaluate(
         video: MP4 path for the first ``video_episodes`` episodes, or None.
         video_episodes: Episodes recorded into ``video``.
         env_kwargs: Extra arguments of ``gym.make`` (e.g. ``{"obstacles": ()}``).
+        action_noise: Gaussian noise on every action, as a fraction of the action
+            range (:mod:`lynxsim.envs.noise`), drawn per episode from its seed.
         on_episode: Called after every episode.
 
     Returns:
@@ -251,7 +266,13 @@ def evaluate(
         stats = []
         with _maybe_video(video, float(env.metadata["render_fps"])) as sink:
             for i in range(episodes):
-                s = run_episode(env, agent, seed + i, sink=sink if i < video_episodes else None)
+                s = run_episode(
+                    env,
+                    agent,
+                    seed + i,
+                    sink=sink if i < video_episodes else None,
+                    action_noise=action_noise,
+                )
                 stats.append(s)
                 if on_episode is not None:
                     on_episode(s)
@@ -268,7 +289,7 @@ def record_expert_episode(
     width: int = 640,
     height: int = 480,
     camera: str = "front",
-    quality: Literal["fast", "default"] = "fast",
+    quality: Literal["fast", "medium", "default"] = "fast",
     env_kwargs: Mapping[str, Any] | None = None,
 ) -> EpisodeStats:
     """Record one expert episode to an MP4 (real time: one frame per control step).
@@ -280,7 +301,8 @@ def record_expert_episode(
         width: Frame width [px].
         height: Frame height [px].
         camera: ``"front"`` or ``"top"``.
-        quality: ``"fast"`` (~50 frames/s on a CPU) or ``"default"`` (shadows, ~8 frames/s).
+        quality: ``"fast"`` (~50 frames/s on a CPU), ``"medium"`` (shadows, ~14 frames/s) or
+            ``"default"`` (shadows and multisampling, ~7 frames/s).
         env_kwargs: Extra arguments of ``gym.make``.
 
     Returns:

@@ -1,4 +1,4 @@
-"""``LynxPickAndPlace-v0``: pick the cube up and put it at a goal, around the obstacle."""
+"""``LynxPickAndPlace-v1``: pick the cube up and put it at a goal, around the obstacles."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, _real
-from lynxsim.envs.workspace import PolarRegion
+from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, WorkColumn, _real
+from lynxsim.envs.workspace import CARRY_HEIGHT_M, PolarRegion
 from lynxsim.sim.arm.model import CUBE_BODY
 
 __all__ = ["CUBE_HALF_SIZE_M", "PickAndPlaceEnv"]
@@ -32,7 +32,8 @@ class PickAndPlaceEnv(LynxArmEnv):
     (friction only: no weld, no attachment), carry it and bring it to a goal
     point on the table or, like Fetch's pick-and-place, in the air above it. The
     report's obstacle (a cylinder of radius 40 mm at (150, 150) mm, 400 mm tall)
-    stands on the table unless ``obstacles`` removes or moves it. Units are SI;
+    stands on the table unless ``obstacles`` removes or moves it, or
+    ``random_obstacles`` draws new obstacles at every reset. Units are SI;
     the frame is the arm's base frame (z up, table top at z = -12.5 mm).
 
     **Action space** ``Box(-1, 1, (5,), float32)`` with ``control="tool"`` (default):
@@ -48,10 +49,18 @@ class PickAndPlaceEnv(LynxArmEnv):
     The commanded tool target moves by the action, is clipped to a box
     (x in [-0.30, 0.45], y in [-0.45, 0.45], z in [-0.004, 0.50] m) and a pitch in
     [-pi/2, pi/2], and the analytic IK (the solution nearest the current command,
-    wrist roll held at pi) turns it into the five servo targets. A target out of
-    reach, outside the joint ranges, or whose solution would move a joint by more
-    than 0.5 rad in one step (a configuration flip) is refused: the last feasible
-    target is held and ``info["target_status"]`` says why; no exception is raised.
+    wrist roll held at pi) turns it into the five servo targets. A request that is
+    out of reach, outside the joint ranges, or whose solution would move a joint by
+    more than 0.5 rad in one step (a configuration flip) is not taken in full:
+    ``-v1`` takes the feasible target nearest it (the farthest feasible point along
+    the request, found by bisection, or the request's position with the pitch
+    kept, or its pitch with the position kept, whichever ends nearer, measured in
+    action units), so a policy that keeps asking for an unreachable pitch still
+    moves the tool; ``-v0`` holds the previous target
+    (``target_fallback="hold"``). ``info["target_status"]`` says why the request was
+    not taken in full, ``info["target_held"]`` whether the target did not move at
+    all, ``info["target_shortfall_m"]`` and ``info["target_shortfall_rad"]`` how far
+    the commanded target is from the request; no exception is raised.
     With ``control="joint"`` the action is ``Box(-1, 1, (6,), float32)``: deltas of
     q1..q5 (+1 = + ``joint_step`` [rad], 0.05; clipped to the joint ranges), then
     the gripper as above.
@@ -109,6 +118,24 @@ class PickAndPlaceEnv(LynxArmEnv):
     ``np_random``; ``reset`` sets the whole simulation state (``mj_resetData``:
     velocities, warm starts and time included).
 
+    **Randomised obstacles**: with ``random_obstacles=(fewest, most)`` (or one
+    number; at most 4) every ``reset`` draws, after the cube and the goal, a
+    uniform number of obstacles in that range with
+    :func:`lynxsim.random_scenes.random_obstacles` from ``np_random``: cylinders
+    (radius 15-40 mm, 0.1-0.4 m tall), boxes (30-100 mm wide, 0.1-0.4 m tall, any
+    yaw) and spheres (radius 20-45 mm, centre 0.05-0.35 m up), centred 0.12-0.30 m
+    from the base axis at any heading. No obstacle comes within 60 mm of the cube,
+    the goal or the ready tool point, and the arm keeps 15 mm
+    (:data:`~lynxsim.envs.base.WORK_CLEARANCE_M`) from every obstacle at the ready
+    pose, pointing down above the cube up to the carry height (with and without the
+    cube in hand) and above the goal holding the cube
+    (:func:`~lynxsim.envs.workspace.work_column`); a scene that fails is drawn
+    again. :attr:`obstacles` lists the episode's obstacles and :attr:`scene` the
+    scene. The model holds spare obstacle geoms (:mod:`lynxsim.sim.arm.slots`), so
+    ids, spaces and the renderer stay; :attr:`collision_checker` sees the episode's
+    obstacles. The scripted expert (:class:`~lynxsim.envs.PickAndPlaceExpert`)
+    plans around them.
+
     **Episode end**: no termination on success (``info["is_success"]`` reports it
     every step); with ``terminate_on_collision`` an arm–obstacle contact terminates.
     Truncation at ``max_episode_steps`` (200 steps = 8 s as registered).
@@ -117,17 +144,21 @@ class PickAndPlaceEnv(LynxArmEnv):
     (an arm collision geom touches the obstacle; checked on the contacts of the last
     physics step, or of every physics step with ``collision_check="physics_step"``),
     ``distance`` [m], ``reward_goal``, ``reward_collision``, ``target_status`` (a
-    :class:`~lynxsim.envs.control.TargetStatus`) and ``target_held``.
+    :class:`~lynxsim.envs.control.TargetStatus`), ``target_held``,
+    ``target_shortfall_m`` [m] and ``target_shortfall_rad`` [rad].
 
     **Arguments** (all keyword): ``goal_in_air_prob`` (0.5) and those of
     :class:`~lynxsim.envs.base.LynxArmEnv`: ``render_mode`` (None, ``"rgb_array"``,
-    ``"human"``), ``control`` (``"tool"``, ``"joint"``), ``reward_type``
+    ``"human"``), ``control`` (``"tool"``, ``"joint"``), ``target_fallback``
+    (``"nearest"``, ``"hold"``), ``reward_type``
     (``"sparse"``, ``"dense"``), ``distance_threshold`` [m], ``obstacles`` (a
-    :class:`~lynxsim.sim.ObstacleSpec`, or None), ``collision_penalty``,
+    sequence of :mod:`lynxsim.scene` obstacles; None: the report's cylinder),
+    ``random_obstacles`` (None, a count or ``(fewest, most)``), ``collision_penalty``,
     ``terminate_on_collision``, ``collision_check``, ``control_dt`` [s] (0.04: 25 Hz
     over the 2 ms physics step; a non-multiple raises), ``position_step`` [m],
     ``pitch_step`` [rad], ``joint_step`` [rad], ``width``, ``height`` [px],
-    ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"fast"``, ``"default"``).
+    ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"fast"``, ``"medium"``,
+    ``"default"``).
 
     **Rendering**: ``render_mode="rgb_array"`` returns (height, width, 3) uint8 frames
     (MuJoCo's EGL off-screen context on a headless machine: import ``lynxsim`` or
@@ -140,7 +171,9 @@ class PickAndPlaceEnv(LynxArmEnv):
     parent made a GL context cannot render (EGL deadlocks there, so it raises): then
     pass ``vector_kwargs={"context": "forkserver"}``.
 
-    **Version history**: v0: first release.
+    **Version history**: v1: an infeasible tool request moves the target as far as
+    is feasible (was: held); ``random_obstacles`` (off by default). v0: first
+    release (still registered, with ``target_fallback="hold"``).
     """
 
     _HAS_CUBE: ClassVar[bool] = True
@@ -197,6 +230,15 @@ class PickAndPlaceEnv(LynxArmEnv):
         qpos[a : a + 3] = cube
         qpos[a + 3 : a + 7] = (math.cos(0.5 * yaw), 0.0, 0.0, math.sin(0.5 * yaw))
         self._set_goal(goal)
+
+    def _work_columns(self) -> list[WorkColumn]:
+        """Down to the cube and up with it or without it; down to the goal and up, holding it."""
+        cube, goal = self.cube_position, self.goal
+        return [
+            WorkColumn(cube, CARRY_HEIGHT_M, False),
+            WorkColumn(cube, CARRY_HEIGHT_M, True),
+            WorkColumn(goal, max(float(goal[2]), CARRY_HEIGHT_M), True),
+        ]
 
     def _observation(self) -> Obs:
         d = self.data

@@ -1,4 +1,4 @@
-"""``LynxReach-v0``: bring the tool point to a goal, around the obstacle."""
+"""``LynxReach-v1``: bring the tool point to a goal, around the obstacles."""
 
 from __future__ import annotations
 
@@ -18,14 +18,17 @@ class ReachEnv(LynxArmEnv):
     """Reach a point with the tool of the report's 5-DOF arm (the easy sibling of pick-and-place).
 
     The scene is pick-and-place's without the cube: the arm, the table and (unless
-    ``obstacles`` removes or moves it) the report's cylinder obstacle. The gripper
+    ``obstacles`` removes or moves it, or ``random_obstacles`` draws new ones at
+    every reset, clear of the goal and of the arm pointing down at it, as in
+    :class:`~lynxsim.envs.PickAndPlaceEnv`) the report's cylinder obstacle. The gripper
     stays open and is not part of the action. SI units, arm base frame.
 
     **Action space** ``Box(-1, 1, (4,), float32)`` with ``control="tool"`` (default):
     moves of the commanded tool point x, y, z (+1 = + ``position_step`` [m], 0.015)
     and pitch (+1 = + ``pitch_step`` [rad], 0.1), turned into servo targets by the
     analytic IK exactly as in :class:`~lynxsim.envs.PickAndPlaceEnv` (an infeasible
-    target is held and reported in ``info["target_status"]``). With
+    request moves the target as far as is feasible in ``-v1``, holds it in ``-v0``;
+    ``info`` reports it). With
     ``control="joint"``: ``Box(-1, 1, (5,), float32)``, deltas of q1..q5
     (+1 = + ``joint_step`` [rad], 0.05).
 
@@ -64,7 +67,9 @@ class ReachEnv(LynxArmEnv):
     **Info**, **arguments** and **rendering**: as :class:`~lynxsim.envs.PickAndPlaceEnv`, without
     ``goal_in_air_prob``.
 
-    **Version history**: v0: first release.
+    **Version history**: v1: an infeasible tool request moves the target as far as
+    is feasible (was: held); ``random_obstacles`` (off by default). v0: first
+    release (still registered, with ``target_fallback="hold"``).
     """
 
     OBS_INDEX: ClassVar[dict[str, slice]] = _fields(

@@ -11,22 +11,35 @@ from __future__ import annotations
 
 import gymnasium as gym
 
-__all__ = ["ENV_IDS", "PICK_AND_PLACE_ID", "REACH_ID", "register_envs"]
+__all__ = ["ENV_IDS", "LATEST_ENV_IDS", "PICK_AND_PLACE_ID", "REACH_ID", "register_envs"]
 
-PICK_AND_PLACE_ID = "LynxPickAndPlace-v0"
-REACH_ID = "LynxReach-v0"
+PICK_AND_PLACE_ID = "LynxPickAndPlace-v1"
+"""The latest pick-and-place env."""
+REACH_ID = "LynxReach-v1"
+"""The latest reach env."""
 
-_ENVS = (
-    (PICK_AND_PLACE_ID, "lynxsim.envs.pick_and_place:PickAndPlaceEnv", 200),
-    (REACH_ID, "lynxsim.envs.reach:ReachEnv", 100),
+_PICK_AND_PLACE = "lynxsim.envs.pick_and_place:PickAndPlaceEnv"
+_REACH = "lynxsim.envs.reach:ReachEnv"
+_HOLD = {"target_fallback": "hold"}
+"""v0: an infeasible tool request holds the previous target."""
+
+_ENVS: tuple[tuple[str, str, int, dict[str, str]], ...] = (
+    ("LynxPickAndPlace-v0", _PICK_AND_PLACE, 200, _HOLD),
+    ("LynxReach-v0", _REACH, 100, _HOLD),
+    (PICK_AND_PLACE_ID, _PICK_AND_PLACE, 200, {}),
+    (REACH_ID, _REACH, 100, {}),
 )
 
-ENV_IDS: tuple[str, ...] = tuple(env_id for env_id, _, _ in _ENVS)
-"""Every registered id."""
+ENV_IDS: tuple[str, ...] = tuple(env_id for env_id, *_ in _ENVS)
+"""Every registered id, older versions included."""
+LATEST_ENV_IDS: tuple[str, ...] = (PICK_AND_PLACE_ID, REACH_ID)
+"""The latest version of each env."""
 
 
 def register_envs() -> None:
     """Register every lynxsim env that is not registered yet (idempotent)."""
-    for env_id, entry_point, steps in _ENVS:
+    for env_id, entry_point, steps, kwargs in _ENVS:
         if env_id not in gym.registry:
-            gym.register(id=env_id, entry_point=entry_point, max_episode_steps=steps)
+            gym.register(
+                id=env_id, entry_point=entry_point, max_episode_steps=steps, kwargs=dict(kwargs)
+            )

@@ -5,8 +5,10 @@ pitch -pi/2, the wrist roll of the envs), also at the carry height above it, and
 when the arm, turned towards it, keeps its links clear of the obstacle: seen from
 above, the links lie on a strip along the ray from the base through the point,
 and the obstacle's circle must stay outside that strip by a margin. Together
-these are what a top-down pick, a carry at a fixed height and a place need; the
-scripted expert (:mod:`lynxsim.envs.expert`) relies on them.
+these are what a top-down pick, a carry at a fixed height and a place need.
+:func:`work_column` gives the arm's configurations there; the envs with
+randomised obstacles keep them clear, and the scripted expert
+(:mod:`lynxsim.envs.expert`) plans its moves between them.
 
 Pure NumPy on top of :func:`lynxsim.arm.ik`; sampling takes a
 :class:`numpy.random.Generator` (the env's ``np_random``).
@@ -20,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import ik
+from lynxsim.arm import ik, ik_nearest
 from lynxsim.errors import InvalidInputError
 from lynxsim.scene import Box, Obstacle
 
@@ -30,12 +32,13 @@ __all__ = [
     "GRIP_ROLL_RAD",
     "OBSTACLE_MARGIN_M",
     "TOP_DOWN_PITCH_RAD",
-    "TUCK_RADIUS_M",
+    "WORK_STEP_M",
     "PolarRegion",
     "clear_of_obstacle",
     "footprint",
     "sample_points",
     "top_down_reachable",
+    "work_column",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -48,10 +51,8 @@ GRIP_ROLL_RAD = math.pi
 direction, and the roll servo sits mid-range (its range is 0..2 pi)."""
 CARRY_HEIGHT_M = 0.07
 """Tool-point height at which the expert carries the cube [m] (cube 6 cm above the table)."""
-TUCK_RADIUS_M = 0.09
-"""Horizontal distance of the tool from the base axis while the expert turns the
-base [m]: the arm then stays within ~0.13 m of the axis, inside the report's
-obstacle (whose near face is 0.172 m from the axis)."""
+WORK_STEP_M = 0.01
+"""Height step between the configurations of a :func:`work_column` [m]."""
 ARM_HALF_WIDTH_M = 0.025
 """Half the width of the arm seen from above [m] (the wrist bracket is 22.9 mm)."""
 OBSTACLE_MARGIN_M = 0.02
@@ -166,3 +167,35 @@ def sample_points(rng: np.random.Generator, region: PolarRegion, n: int) -> Floa
     azimuth = rng.uniform(*region.azimuth, n)
     z = rng.uniform(*region.height, n)
     return np.stack([radius * np.cos(azimuth), radius * np.sin(azimuth), z], axis=-1)
+
+
+def work_column(point: npt.ArrayLike, top_z: float, q_ref: npt.ArrayLike) -> FloatArray | None:
+    """The arm's configurations with the gripper pointing down from a point up to a height.
+
+    Where the arm works at a cube or a goal: it descends, grasps or places, and
+    rises again along the vertical through the point. Each configuration is the
+    IK solution nearest the one below it (the first nearest ``q_ref``), as the
+    envs' tool-space controller picks them, at pitch
+    :data:`TOP_DOWN_PITCH_RAD` and roll :data:`GRIP_ROLL_RAD`.
+
+    Args:
+        point: The lowest tool point, shape (3,) [m].
+        top_z: Height of the highest tool point [m]; ``<= point[2]``: the point alone.
+        q_ref: Reference joints, shape (5,) [rad].
+
+    Returns:
+        Joints from the bottom up, shape (K, 5) [rad], at most :data:`WORK_STEP_M`
+        apart in height; None if a height is out of reach.
+    """
+    x, y, z = (float(v) for v in np.asarray(point, dtype=float).reshape(3))
+    steps = max(0, math.ceil((top_z - z) / WORK_STEP_M - 1e-9))
+    heights = np.linspace(z, max(z, top_z), steps + 1)
+    ref = [float(v) for v in np.asarray(q_ref, dtype=float).reshape(5)]
+    column = []
+    for h in heights.tolist():
+        _, q = ik_nearest(x, y, h, TOP_DOWN_PITCH_RAD, GRIP_ROLL_RAD, ref)
+        if q is None:
+            return None
+        column.append(q)
+        ref = list(q)
+    return np.array(column)

@@ -17,7 +17,7 @@ def test_env_command_reports_success_return_and_collisions(capsys, tmp_path):
     argv = ["env", "--policy", "expert", "--episodes", "2", "--seed", "3", "--quiet"]
     assert main([*argv, "--video", str(video)]) == 0
     out = capsys.readouterr().out
-    assert "LynxPickAndPlace-v0, expert policy, 2 episodes (seeds 3..4)" in out
+    assert "LynxPickAndPlace-v1, expert policy, 2 episodes (seeds 3..4)" in out
     assert "success rate     100.0%" in out
     assert "collisions       0 episodes, 0 steps" in out
     reader = imageio.get_reader(video)
@@ -28,9 +28,9 @@ def test_env_command_reports_success_return_and_collisions(capsys, tmp_path):
 
 
 def test_env_command_runs_a_random_policy_on_reach(capsys):
-    argv = ["env", "--policy", "random", "--env", "LynxReach-v0", "--episodes", "2", "--quiet"]
+    argv = ["env", "--policy", "random", "--env", "LynxReach-v1", "--episodes", "2", "--quiet"]
     assert main(argv) == 0
-    assert "LynxReach-v0, random policy, 2 episodes" in capsys.readouterr().out
+    assert "LynxReach-v1, random policy, 2 episodes" in capsys.readouterr().out
 
 
 def test_env_command_errors_are_one_line(capsys):
@@ -50,3 +50,34 @@ def test_record_expert_episode_writes_an_mp4_and_returns_its_stats(tmp_path):
     assert stats.steps == 200
     assert stats.frames == stats.steps + 1
     assert imageio.get_reader(dest).count_frames() == stats.frames
+
+
+def test_env_command_with_random_obstacles_and_action_noise(capsys):
+    argv = ["env", "--episodes", "3", "--seed", "5", "--quiet", "--random-obstacles", "1-3"]
+    assert main([*argv, "--action-noise", "0.05"]) == 0
+    out = capsys.readouterr().out
+    assert (
+        "LynxPickAndPlace-v1, expert policy, 3 episodes (seeds 5..7), "
+        "1-3 random obstacles per episode, action noise 0.05"
+    ) in out
+    assert "collisions       0 episodes" in out
+
+
+@pytest.mark.parametrize(
+    ("flags", "message"),
+    [
+        (["--action-noise", "1.5"], "argument --action-noise: must be between 0 and 1, got 1.5"),
+        (["--action-noise", "nan"], "argument --action-noise"),
+        (["--random-obstacles", "5"], "argument --random-obstacles: must be between 0 and 4"),
+        (["--random-obstacles", "3-1"], "must be N or LO-HI with LO <= HI, got 3-1"),
+        (["--random-obstacles", "1-"], "argument --random-obstacles: must be an integer"),
+        (["--random-obstacles", "2", "--no-obstacle"], "not allowed with argument"),
+    ],
+)
+def test_env_scene_and_noise_flags_refuse_bad_values(capsys, flags, message):
+    with pytest.raises(SystemExit) as info:
+        main(["env", "--episodes", "1", "--quiet", *flags])
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err
+    assert message in err

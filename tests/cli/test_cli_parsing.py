@@ -34,6 +34,7 @@ COMMANDS = [
     ("rrr", "poses"),
     ("demo",),
     ("env",),
+    ("dataset",),
 ]
 """Every (sub-)command, ``()`` for ``lynxsim`` itself."""
 
@@ -82,7 +83,7 @@ def test_help_prints_usage_and_exits_zero(capsys, command, flag):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        ([], "required: {fk,ik,workspace,traj,plan,play,rrr,demo,env}"),
+        ([], "required: {fk,ik,workspace,traj,plan,play,rrr,demo,env,dataset}"),
         (["fk"], "required: Q1, Q2, Q3, Q4, Q5"),
         (["fk", "1", "2"], "required: Q3, Q4, Q5"),
         (["fk", "1", "2", "3", "4", "5", "6"], "unrecognized arguments: 6"),
@@ -222,7 +223,7 @@ def test_out_names_a_file_and_out_dir_a_folder():
                 assert action.metavar == "DIR", command
                 writes_a_folder.add(command)
     assert writes_a_file == {("workspace",), ("play",), ("rrr", "workspace"), ("rrr", "poses")}
-    assert writes_a_folder == {("traj",), ("plan",), ("demo",)}
+    assert writes_a_folder == {("traj",), ("plan",), ("demo",), ("dataset",)}
 
 
 @pytest.mark.parametrize(

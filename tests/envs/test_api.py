@@ -94,7 +94,7 @@ def test_reset_with_a_seed_restores_the_whole_state(env_id, control):
 
 
 def test_unseeded_resets_continue_the_seeded_stream():
-    a, b = gym.make("LynxPickAndPlace-v0"), gym.make("LynxPickAndPlace-v0")
+    a, b = gym.make("LynxPickAndPlace-v1"), gym.make("LynxPickAndPlace-v1")
     goals_a = [a.reset(seed=3)[0]["desired_goal"]] + [
         a.reset()[0]["desired_goal"] for _ in range(4)
     ]
@@ -160,7 +160,7 @@ def test_observations_are_fresh_copies(pick_and_place):
     env = pick_and_place
     u = env.unwrapped
     obs, _ = env.reset(seed=0)
-    twin = gym.make("LynxPickAndPlace-v0")
+    twin = gym.make("LynxPickAndPlace-v1")
     twin_obs, _ = twin.reset(seed=0)
     sim_arrays = [u.data.qpos, u.data.qvel, u.data.ctrl, u.data.site_xpos, u._goal]
     action = env.action_space.sample()
@@ -180,7 +180,7 @@ def test_observations_are_fresh_copies(pick_and_place):
 @pytest.mark.parametrize("penalty", [0.0, 2.5], ids=["no-penalty", "penalty"])
 def test_compute_reward_reproduces_step_rewards(reward_type, penalty):
     env = gym.make(
-        "LynxPickAndPlace-v0", reward_type=reward_type, collision_penalty=penalty, control="joint"
+        "LynxPickAndPlace-v1", reward_type=reward_type, collision_penalty=penalty, control="joint"
     )
     u = env.unwrapped
     achieved, desired, infos, rewards = [], [], [], []
@@ -212,7 +212,7 @@ def test_compute_reward_reproduces_step_rewards(reward_type, penalty):
 
 def test_arm_obstacle_contact_is_reported_penalised_and_can_terminate():
     env = gym.make(
-        "LynxPickAndPlace-v0",
+        "LynxPickAndPlace-v1",
         control="joint",
         collision_penalty=3.0,
         terminate_on_collision=True,
@@ -237,7 +237,7 @@ def test_arm_obstacle_contact_is_reported_penalised_and_can_terminate():
 
 
 def test_no_obstacle_means_no_collisions_and_a_moved_one_is_avoided():
-    env = gym.make("LynxPickAndPlace-v0", control="joint", obstacles=())
+    env = gym.make("LynxPickAndPlace-v1", control="joint", obstacles=())
     env.reset(seed=0)
     assert env.unwrapped.ids.obstacle_geoms == ()
     for _ in range(40):
@@ -251,7 +251,7 @@ def test_no_obstacle_means_no_collisions_and_a_moved_one_is_avoided():
             assert math.dist(p[:2], moved.position[:2]) > moved.radius + 0.03
 
 
-def test_unreachable_tool_targets_are_held_not_raised():
+def test_v0_holds_unreachable_tool_targets_instead_of_raising():
     env = gym.make("LynxReach-v0")
     env.reset(seed=0)
     u = env.unwrapped
@@ -273,8 +273,57 @@ def test_unreachable_tool_targets_are_held_not_raised():
     assert info["target_status"] == TargetStatus.ACCEPTED
 
 
+def test_v1_moves_an_unreachable_request_as_far_as_is_feasible():
+    """Out along +x beyond the reach: the target stops at the boundary, info says by how much."""
+    env = gym.make("LynxReach-v1")
+    env.reset(seed=0)
+    ix = env.unwrapped.OBS_INDEX
+    statuses, shortfalls = [], []
+    for _ in range(60):
+        obs, _, _, _, info = env.step(np.array([1.0, 0.0, 0.3, 0.0], dtype=np.float32))
+        statuses.append(info["target_status"])
+        shortfalls.append(info["target_shortfall_m"])
+        if info["target_status"] == TargetStatus.ACCEPTED:
+            assert info["target_shortfall_m"] == 0.0
+            assert info["target_shortfall_rad"] == 0.0
+    assert statuses[0] == TargetStatus.ACCEPTED
+    assert statuses[-1] != TargetStatus.ACCEPTED
+    assert 0.0 < shortfalls[-1] <= np.hypot(0.015, float(np.float32(0.3)) * 0.015) + 1e-12
+    target = obs["observation"][ix["commanded_tool_position"]]
+    v0 = gym.make("LynxReach-v0")
+    v0.reset(seed=0)
+    for _ in range(60):
+        held, *_ = v0.step(np.array([1.0, 0.0, 0.3, 0.0], dtype=np.float32))
+    # v0 stops at its last whole step; v1 presses on to the edge of the workspace
+    assert target[0] > held["observation"][ix["commanded_tool_position"]][0]
+    obs, *_ = env.step(np.array([1.0, 0.0, 0.3, 0.0], dtype=np.float32))
+    assert np.isfinite(obs["observation"]).all()
+    *_, info = env.step(np.array([-1.0, 0.0, 0.0, 0.0], dtype=np.float32))
+    assert info["target_status"] == TargetStatus.ACCEPTED
+
+
+def test_v1_always_unreachable_pitch_still_moves_the_tool_toward_the_commanded_position():
+    """A policy that always asks for more pitch than the IK allows keeps moving in x, y, z."""
+    env = gym.make("LynxReach-v1")
+    env.reset(seed=0)
+    ix = env.unwrapped.OBS_INDEX
+    start = None
+    held = 0
+    for k in range(40):
+        obs, _, _, _, info = env.step(np.array([0.0, 0.5, 0.0, 1.0], dtype=np.float32))
+        if k == 0:
+            start = obs["observation"][ix["commanded_tool_position"]].copy()
+        held += info["target_held"]
+    end = obs["observation"][ix["commanded_tool_position"]]
+    tool = obs["observation"][ix["tool_position"]]
+    assert held == 0
+    assert end[1] - start[1] > 0.15  # 39 steps of 7.5 mm along +y, most of them taken
+    assert abs(end[0] - start[0]) < 0.02
+    assert tool[1] - start[1] > 0.1  # and the simulated tool follows
+
+
 def test_actions_are_clipped_and_checked():
-    a, b = gym.make("LynxReach-v0"), gym.make("LynxReach-v0")
+    a, b = gym.make("LynxReach-v1"), gym.make("LynxReach-v1")
     a.reset(seed=0)
     b.reset(seed=0)
     _assert_same(a.step(np.full(4, 7.0)), b.step(np.ones(4)))
@@ -306,7 +355,7 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
         ({"reward_type": "shaped"}, r"reward_type must be one of 'sparse', 'dense'"),
         ({"collision_check": "never"}, "collision_check must be one of"),
         ({"render_mode": "ansi"}, "render_mode must be None or one of"),
-        ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'default'"),
+        ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'medium', 'default'"),
         ({"distance_threshold": 0.0}, "distance_threshold must be > 0 m"),
         ({"collision_penalty": -1.0}, "collision_penalty must be between 0 and 1e"),
         ({"obstacles": (0.1, 0.1)}, "obstacles must be a sequence of Cylinder, Box or Sphere"),
@@ -374,7 +423,12 @@ def test_the_longest_control_period_is_accepted():
         ({"render_mode": ["rgb_array"]}, "render_mode must be None or one of"),
         ({"control": ["tool"]}, "control must be one of"),
         ({"terminate_on_collision": "yes"}, "terminate_on_collision must be True or False"),
-        ({"obstacles": None}, "obstacles must be a sequence"),
+        ({"obstacles": "cylinder"}, "obstacles must be a sequence"),
+        ({"random_obstacles": "3"}, r"random_obstacles \(fewest\) must be"),
+        ({"random_obstacles": (2, 1)}, r"random_obstacles \(most\)"),
+        ({"random_obstacles": 5}, "random_obstacles"),
+        ({"random_obstacles": (1, 2, 3)}, r"a count or \(fewest, most\)"),
+        ({"random_obstacles": 2, "obstacles": ()}, "not both"),
         ({"goal_in_air_prob": "half"}, "goal_in_air_prob must be a number"),
         ({"goal_in_air_prob": math.nan}, "goal_in_air_prob must be finite"),
     ],

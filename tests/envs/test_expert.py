@@ -16,27 +16,27 @@ MIN_SUCCESS = 0.95
 
 
 def test_pick_and_place_expert_succeeds_without_touching_the_obstacle():
-    summary = evaluate("LynxPickAndPlace-v0", "expert", EXPERT_EPISODES, seed=1000)
+    summary = evaluate("LynxPickAndPlace-v1", "expert", EXPERT_EPISODES, seed=1000)
     assert summary.success_rate >= MIN_SUCCESS, [e for e in summary.episodes if not e.success]
     assert summary.collision_steps == 0
     goals_in_air = 0
     for e in summary.episodes:
         assert e.first_success_step is not None
         assert e.first_success_step < 150
-    env = gym.make("LynxPickAndPlace-v0")
+    env = gym.make("LynxPickAndPlace-v1")
     for i in range(EXPERT_EPISODES):
         obs, _ = env.reset(seed=1000 + i)
         goals_in_air += obs["desired_goal"][2] > 0.01
     assert 0 < goals_in_air < EXPERT_EPISODES  # both kinds of goal were tried
 
 
-def test_pick_and_place_expert_needs_no_obstacle_knowledge():
-    summary = evaluate("LynxPickAndPlace-v0", "expert", 5, seed=2000, env_kwargs={"obstacles": ()})
+def test_pick_and_place_expert_works_without_obstacles():
+    summary = evaluate("LynxPickAndPlace-v1", "expert", 5, seed=2000, env_kwargs={"obstacles": ()})
     assert summary.success_rate == 1.0
 
 
 def test_expert_grasps_by_friction_and_holds_goals_in_the_air():
-    env = gym.make("LynxPickAndPlace-v0", goal_in_air_prob=1.0)
+    env = gym.make("LynxPickAndPlace-v1", goal_in_air_prob=1.0)
     expert = PickAndPlaceExpert(env)
     stats = run_episode(env, expert, seed=7)
     u = env.unwrapped
@@ -48,20 +48,43 @@ def test_expert_grasps_by_friction_and_holds_goals_in_the_air():
 
 
 def test_reach_expert_succeeds_without_touching_the_obstacle():
-    summary = evaluate("LynxReach-v0", "expert", 10, seed=0)
+    summary = evaluate("LynxReach-v1", "expert", 10, seed=0)
     assert summary.success_rate == 1.0
     assert summary.collision_steps == 0
 
 
 def test_experts_refuse_other_envs_and_joint_control():
     with pytest.raises(InvalidInputError, match="this expert drives a PickAndPlaceEnv"):
-        PickAndPlaceExpert(gym.make("LynxReach-v0"))
+        PickAndPlaceExpert(gym.make("LynxReach-v1"))
     with pytest.raises(InvalidInputError, match="the expert needs control='tool'"):
-        ReachExpert(gym.make("LynxReach-v0", control="joint"))
+        ReachExpert(gym.make("LynxReach-v1", control="joint"))
 
 
 def test_random_policy_is_seeded():
-    a = evaluate("LynxReach-v0", "random", 2, seed=4)
-    b = evaluate("LynxReach-v0", "random", 2, seed=4)
+    a = evaluate("LynxReach-v1", "random", 2, seed=4)
+    b = evaluate("LynxReach-v1", "random", 2, seed=4)
     assert a == b
     assert np.isfinite(a.mean_return)
+
+
+def test_noisy_episodes_are_seeded_and_differ_from_clean_ones():
+    clean = evaluate("LynxPickAndPlace-v1", "expert", 2, seed=40)
+    noisy = evaluate("LynxPickAndPlace-v1", "expert", 2, seed=40, action_noise=0.05)
+    again = evaluate("LynxPickAndPlace-v1", "expert", 2, seed=40, action_noise=0.05)
+    assert noisy == again
+    assert noisy != clean
+
+
+@pytest.mark.slow
+def test_closed_loop_expert_recovers_from_perturbed_actions():
+    """Noise of 5 % of the action range (std 0.1) on every action, random obstacles."""
+    summary = evaluate(
+        "LynxPickAndPlace-v1",
+        "expert",
+        EXPERT_EPISODES,
+        seed=3000,
+        action_noise=0.05,
+        env_kwargs={"random_obstacles": (1, 3)},
+    )
+    assert summary.success_rate >= 0.9, [e for e in summary.episodes if not e.success]
+    assert summary.collision_episodes == 0

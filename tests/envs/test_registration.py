@@ -66,9 +66,9 @@ def test_import_lynxsim_envs_registers_them_without_mujoco():
         import lynxsim.envs
 
         gym.register_envs(lynxsim.envs)
-        assert {"LynxPickAndPlace-v0", "LynxReach-v0"} <= set(gym.registry)
+        assert {"LynxPickAndPlace-v1", "LynxReach-v1"} <= set(gym.registry)
         assert "mujoco" not in sys.modules
-        env = gym.make("LynxPickAndPlace-v0")
+        env = gym.make("LynxPickAndPlace-v1")
         env.reset(seed=0)
         print(type(env.unwrapped).__name__)
         """
@@ -82,7 +82,7 @@ def test_module_colon_id_makes_without_an_import():
         """
         import gymnasium as gym
 
-        env = gym.make("lynxsim.envs:LynxPickAndPlace-v0")
+        env = gym.make("lynxsim.envs:LynxPickAndPlace-v1")
         env.reset(seed=0)
         print(type(env.unwrapped).__name__, env.spec.max_episode_steps)
         """
@@ -92,7 +92,7 @@ def test_module_colon_id_makes_without_an_import():
 
 
 def test_acceptance_make_and_reset():
-    env = gym.make("LynxPickAndPlace-v0")
+    env = gym.make("LynxPickAndPlace-v1")
     obs, info = env.reset(seed=0)
     assert set(obs) == {"observation", "achieved_goal", "desired_goal"}
     assert info["is_success"] is False
@@ -100,18 +100,22 @@ def test_acceptance_make_and_reset():
 
 
 def test_specs_use_string_entry_points_and_time_limits():
-    steps = {"LynxPickAndPlace-v0": 200, "LynxReach-v0": 100}
+    steps = {"LynxPickAndPlace": 200, "LynxReach": 100}
     for env_id in ENV_IDS:
         spec = gym.spec(env_id)
         assert isinstance(spec.entry_point, str)
-        assert spec.max_episode_steps == steps[env_id]
-    assert isinstance(gym.make("LynxReach-v0").unwrapped, ReachEnv)
-    assert isinstance(gym.make("LynxPickAndPlace-v0").unwrapped, PickAndPlaceEnv)
+        assert spec.max_episode_steps == steps[env_id.split("-")[0]]
+    fallback = {"v0": "hold", "v1": "nearest"}
+    for env_id in ENV_IDS:
+        version = env_id.split("-")[1]
+        assert gym.make(env_id).unwrapped.controller.fallback.value == fallback[version]
+    assert isinstance(gym.make("LynxReach-v1").unwrapped, ReachEnv)
+    assert isinstance(gym.make("LynxPickAndPlace-v1").unwrapped, PickAndPlaceEnv)
 
 
 def test_registering_twice_is_harmless():
     lynxsim.envs.register_envs()
-    assert gym.spec("LynxReach-v0").max_episode_steps == 100
+    assert gym.spec("LynxReach-v1").max_episode_steps == 100
 
 
 def test_manual_documents_every_observation():

@@ -14,7 +14,7 @@ RENDER_STD_MIN = 5.0
 
 
 def test_rgb_array_frames_are_not_blank_and_follow_the_arguments():
-    env = gym.make("LynxPickAndPlace-v0", render_mode="rgb_array", width=320, height=240)
+    env = gym.make("LynxPickAndPlace-v1", render_mode="rgb_array", width=320, height=240)
     env.reset(seed=0)
     assert not env.unwrapped._renderer.started  # nothing made before the first frame
     frame = env.render()
@@ -23,7 +23,7 @@ def test_rgb_array_frames_are_not_blank_and_follow_the_arguments():
     assert frame.std() > RENDER_STD_MIN
     env.step(env.action_space.sample())
     assert not np.array_equal(env.render(), np.zeros_like(frame))
-    top = gym.make("LynxPickAndPlace-v0", render_mode="rgb_array", width=320, height=240,
+    top = gym.make("LynxPickAndPlace-v1", render_mode="rgb_array", width=320, height=240,
                    camera="top")  # fmt: skip
     top.reset(seed=0)
     assert not np.array_equal(top.render(), frame)

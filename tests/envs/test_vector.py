@@ -20,7 +20,7 @@ NUM_ENVS = 2
 )
 def test_vector_env_of_two_runs_and_autoresets(mode, vector_kwargs):
     env = gym.make_vec(
-        "LynxReach-v0",
+        "LynxReach-v1",
         num_envs=NUM_ENVS,
         vectorization_mode=mode,
         vector_kwargs=vector_kwargs,
@@ -46,7 +46,7 @@ def test_async_vector_env_with_the_default_start_method():
     code = textwrap.dedent(
         """
         import gymnasium as gym, lynxsim.envs
-        env = gym.make_vec("LynxPickAndPlace-v0", num_envs=2, vectorization_mode="async")
+        env = gym.make_vec("LynxPickAndPlace-v1", num_envs=2, vectorization_mode="async")
         env.reset(seed=0)
         for _ in range(5):
             env.step(env.action_space.sample())
@@ -61,11 +61,11 @@ def test_forking_after_rendering_raises_instead_of_hanging():
     code = textwrap.dedent(
         """
         import gymnasium as gym, lynxsim.envs
-        parent = gym.make("LynxReach-v0", render_mode="rgb_array")
+        parent = gym.make("LynxReach-v1", render_mode="rgb_array")
         parent.reset(seed=0)
         parent.render()
         env = gym.make_vec(
-            "LynxReach-v0", num_envs=2, vectorization_mode="async", render_mode="rgb_array"
+            "LynxReach-v1", num_envs=2, vectorization_mode="async", render_mode="rgb_array"
         )
         env.reset(seed=0)
         try:
