@@ -6,7 +6,6 @@ import argparse
 import math
 import os
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -53,47 +52,53 @@ def _simulations(args: argparse.Namespace) -> None:
     from tqdm import tqdm
 
     from lynxsim.cli.play import SUMMARY_HEADER, summary_row
-    from lynxsim.demo.arm import arm_runs, run_arm_demo
-    from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
+    from lynxsim.demo.arm import arm_jobs, arm_runs
+    from lynxsim.demo.expert import EXPERT_SEED, EXPERT_VIDEO, expert_job
+    from lynxsim.demo.jobs import Job, run_jobs
+    from lynxsim.demo.rrr import FIGURE20_FILE, rrr_jobs
+    from lynxsim.envs.evaluation import EpisodeStats
     from lynxsim.sim.render import Quality, RenderSettings
+    from lynxsim.sim.report import RunReport
     from lynxsim.tasks import find_tasks
 
+    out: Path = args.out_dir
     runs = list(arm_runs(find_tasks(args.tasks, "arm"), lambda m: print(f"skipped: {m}")))
     n_rrr = len(find_tasks(args.tasks, "rrr"))
-    total = len(runs) + n_rrr
-    render = RenderSettings(quality=Quality(args.quality))
-    print(f"\nSimulating {len(runs)} arm runs and {n_rrr} 3-RRR runs into {args.out_dir}/")
-    with tqdm(total=total, unit="run", disable=args.quiet, file=sys.stderr) as bar:
-
-        def progress(offset: int) -> Callable[[int, float], None]:
-            def update(i: int, fraction: float) -> None:
-                bar.n = min(total, offset + i + fraction)
-                bar.refresh()
-
-            return update
-
-        reports = run_arm_demo(runs, args.out_dir, render, progress(0), jobs=args.jobs)
-        reports += run_rrr_demo(args.out_dir, render, progress(len(runs)), tasks=args.tasks)
-    print(SUMMARY_HEADER)
-    for report in reports:
-        print(summary_row(report))
-    print(f"\n3-RRR Figure 20 poses judged by simulation: {args.out_dir / FIGURE20_FILE}")
-    print((args.out_dir / FIGURE20_FILE).read_text().rstrip())
-    _expert_episode(args)
-    print(f"\nVideos and JSON reports in {args.out_dir}/, plots in {args.out_dir / 'plots'}/")
-
-
-def _expert_episode(args: argparse.Namespace) -> None:
-    from lynxsim.envs.evaluation import record_expert_episode
-
-    dest = args.out_dir / "LynxPickAndPlace-v0_expert.mp4"
-    stats = record_expert_episode(dest, seed=0, quality=args.quality)
-    first = "-" if stats.first_success_step is None else str(stats.first_success_step)
+    quality = Quality(args.quality)
+    render = RenderSettings(quality=quality)
+    jobs: list[Job[RunReport | EpisodeStats | None]] = [
+        *arm_jobs(runs, out, render),
+        *rrr_jobs(out, render, tasks=args.tasks),
+        expert_job(out, quality),
+    ]
+    workers = min(args.jobs, len(jobs))
     print(
-        f"\nLynxPickAndPlace-v0, scripted expert, seed 0: success {stats.success} "
-        f"(first at step {first} of {stats.steps}), return {stats.episode_return:.1f}, "
-        f"arm-obstacle contact steps {stats.collision_steps}; video {dest}"
+        f"\nSimulating {len(runs)} arm runs, {n_rrr} 3-RRR runs and an expert episode into "
+        f"{out}/ ({len(jobs)} jobs, {workers} at a time, {quality.value} rendering)"
     )
+    with tqdm(total=len(jobs), unit="job", disable=args.quiet, file=sys.stderr) as bar:
+
+        def progress(k: int, fraction: float) -> None:
+            bar.n = min(len(jobs), k + fraction)
+            bar.refresh()
+
+        results = run_jobs(jobs, progress, workers=workers)
+    print(SUMMARY_HEADER)
+    for report in results:
+        if isinstance(report, RunReport):
+            print(summary_row(report))
+    print(f"\n3-RRR Figure 20 poses judged by simulation: {out / FIGURE20_FILE}")
+    print((out / FIGURE20_FILE).read_text().rstrip())
+    for stats in results:
+        if isinstance(stats, EpisodeStats):
+            first = "-" if stats.first_success_step is None else str(stats.first_success_step)
+            print(
+                f"\nLynxPickAndPlace-v0, scripted expert, seed {EXPERT_SEED}: success "
+                f"{stats.success} (first at step {first} of {stats.steps}), return "
+                f"{stats.episode_return:.1f}, arm-obstacle contact steps {stats.collision_steps}; "
+                f"video {out / EXPERT_VIDEO}"
+            )
+    print(f"\nVideos and JSON reports in {out}/, plots in {out / 'plots'}/")
 
 
 def _demo(args: argparse.Namespace) -> int:
@@ -118,12 +123,19 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         metavar="DIR",
         help="output folder (default videos/)",
     )
-    p.add_argument("--quality", choices=("fast", "default"), default="default")
+    p.add_argument(
+        "--quality",
+        choices=("fast", "medium", "default"),
+        default="medium",
+        help="rendering preset: fast (no shadows), medium (shadows; default) or default "
+        "(shadows and multisampling, twice the cost of medium)",
+    )
     p.add_argument(
         "--jobs",
         type=bounded_int(1, 64),
         default=os.cpu_count() or 1,
-        help="arm runs played at the same time, one process each (default: the CPU count)",
+        help="jobs (runs, plots, the expert episode) run at the same time, one process each "
+        "(default: the CPU count)",
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_demo)

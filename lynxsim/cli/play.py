@@ -230,9 +230,10 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     )
     p.add_argument(
         "--quality",
-        choices=("fast", "default"),
+        choices=("fast", "medium", "default"),
         default="default",
-        help="rendering preset: fast (no shadows, no multisampling) or default",
+        help="rendering preset: fast (no shadows), medium (shadows) or default (shadows and "
+        "multisampling)",
     )
     p.add_argument(
         "--fps",

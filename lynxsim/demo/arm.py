@@ -1,30 +1,34 @@
-"""The main job: every task of ``tasks/`` simulated with every trajectory type.
+"""The arm part of the main job: every task of ``tasks/`` simulated with every trajectory type.
 
 Writes, under one output folder, an MP4 and a JSON run report per run, joint
 profile plots and a tool-path comparison per task; returns the reports for the
-summary table. Used by ``lynxsim demo``.
+summary table. Each run and each comparison is a :class:`~lynxsim.demo.jobs.Job`
+of its own (``lynxsim demo`` runs them in a pool with the 3-RRR part's).
 """
 
 from __future__ import annotations
 
 import functools
-import multiprocessing
 from collections.abc import Callable, Iterator
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
+from lynxsim.demo.jobs import Job, JobProgress, run_jobs
 from lynxsim.errors import LynxsimError
 from lynxsim.fileio import file_stem
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory, TrajectoryKind
 
-__all__ = ["DemoRun", "arm_runs", "run_arm_demo"]
+__all__ = ["PLOT_COST", "DemoRun", "arm_jobs", "arm_runs", "run_arm_demo"]
+
+PLOT_COST = 10.0
+"""Cost of a job that only draws a plot, in the unit of :attr:`Job.cost` (frames)."""
 
 
 @dataclass(frozen=True)
@@ -51,12 +55,9 @@ def arm_runs(tasks: list[Task], skipped: Callable[[str], None]) -> Iterator[Demo
 
 
 def _play(
-    run: DemoRun,
-    out: Path,
-    render: RenderSettings,
-    progress: Callable[[float], None] | None = None,
+    run: DemoRun, out: Path, render: RenderSettings, progress: ProgressFn | None
 ) -> RunReport:
-    """Plot, simulate and record one run; write its JSON report (a worker's whole job)."""
+    """Plot, simulate and record one run; write its JSON report."""
     plot_joint_profiles(run.trajectory, out / "plots" / f"{run.stem}.png")
     playback = run_arm_trajectory(
         run.trajectory,
@@ -70,11 +71,49 @@ def _play(
     return playback.report
 
 
+def _plot_paths(
+    task: Task, trajectories: dict[str, Trajectory], out: Path, progress: ProgressFn | None
+) -> None:
+    """Draw one task's tool paths of every type into one comparison."""
+    plot_tool_paths(
+        trajectories,
+        out / "plots" / f"{file_stem(task.name, 'paths')}.png",
+        obstacles=task.scene.obstacles,
+        title=f"{task.name}: tool paths of every type",
+    )
+    if progress is not None:
+        progress(1.0)
+
+
+def arm_jobs(runs: list[DemoRun], out: Path, render: RenderSettings) -> list[Job[RunReport | None]]:
+    """The jobs of the arm part: each run (its report), then each task's path comparison (None).
+
+    Args:
+        runs: From :func:`arm_runs`.
+        out: Output folder (videos, reports; plots in ``out/plots``).
+        render: Video settings.
+    """
+    jobs: list[Job[RunReport | None]] = []
+    for run in runs:
+        work = functools.partial(_play, run, out, render)
+        frames = run.trajectory.duration * render.fps
+        jobs.append(Job(run.stem, PLOT_COST + frames, work))  # profiles plotted, then the video
+    by_task: dict[str, tuple[Task, dict[str, Trajectory]]] = {}
+    for run in runs:
+        by_task.setdefault(run.task.name, (run.task, {}))[1][run.trajectory.kind.value] = (
+            run.trajectory
+        )
+    for name, (task, trajectories) in by_task.items():
+        plot = functools.partial(_plot_paths, task, trajectories, out)
+        jobs.append(Job(file_stem(name, "paths"), PLOT_COST, plot))
+    return jobs
+
+
 def run_arm_demo(
     runs: list[DemoRun],
     out: Path,
     render: RenderSettings,
-    progress: Callable[[int, float], None] | None = None,
+    progress: JobProgress | None = None,
     *,
     jobs: int = 1,
 ) -> list[RunReport]:
@@ -84,37 +123,12 @@ def run_arm_demo(
         runs: From :func:`arm_runs`.
         out: Output folder (videos, reports; plots in ``out/plots``).
         render: Video settings.
-        progress: Called as ``progress(k, fraction)`` with ``k + fraction`` the
-            runs done so far (one run at a time; with ``jobs > 1`` whole runs).
-        jobs: Worker processes playing runs at the same time (1: in this process).
+        progress: See :func:`~lynxsim.demo.jobs.run_jobs` (the jobs: one per
+            run, then one per task).
+        jobs: Worker processes running jobs at the same time (1: in this process).
 
     Returns:
         The run reports, in the order of ``runs``.
     """
-    plots = out / "plots"
-    reports: list[RunReport | None] = [None] * len(runs)
-    if jobs <= 1:
-        for i, run in enumerate(runs):
-            update = None if progress is None else functools.partial(progress, i)
-            reports[i] = _play(run, out, render, update)
-    else:
-        context = multiprocessing.get_context("spawn")  # no forked MuJoCo or GL state
-        with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
-            futures = {pool.submit(_play, run, out, render): i for i, run in enumerate(runs)}
-            for done, future in enumerate(as_completed(futures)):
-                reports[futures[future]] = future.result()
-                if progress is not None:
-                    progress(done, 1.0)
-    by_task: dict[str, tuple[Task, dict[str, Trajectory]]] = {}
-    for run in runs:
-        by_task.setdefault(run.task.name, (run.task, {}))[1][run.trajectory.kind.value] = (
-            run.trajectory
-        )
-    for name, (task, trajectories) in by_task.items():
-        plot_tool_paths(
-            trajectories,
-            plots / f"{file_stem(name, 'paths')}.png",
-            obstacles=task.scene.obstacles,
-            title=f"{name}: tool paths of every type",
-        )
-    return [r for r in reports if r is not None]
+    results = run_jobs(arm_jobs(runs, out, render), progress, workers=jobs)
+    return [r for r in results if r is not None]

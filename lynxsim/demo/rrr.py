@@ -5,35 +5,41 @@ an MP4 from the orthographic ``top`` camera with the platform's path traced,
 its JSON run report and, in ``plots/``, the path drawn over its workspace;
 the workspace maps of the report's Figure 21 orientations in ``plots/``;
 and ``rrr_figure20_simulation.txt``, the simulation's verdicts on the
-report's Figure 20 poses. Returns the run reports for the summary table.
+report's Figure 20 poses. Returns the run reports for the summary table. Each
+run, the workspace maps and the Figure 20 verdicts are a
+:class:`~lynxsim.demo.jobs.Job` of their own (:func:`rrr_jobs`).
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
+from lynxsim.demo.arm import PLOT_COST
+from lynxsim.demo.jobs import Job, JobProgress, job_progress
 from lynxsim.fileio import atomic_path, file_stem
 from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
 from lynxsim.rrr import mode_label
 from lynxsim.rrr.task import path_from_task
 from lynxsim.rrr.workspace import workspace_maps
+from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.sim.rrr.model import HOME_MODE
 from lynxsim.sim.rrr.task import run_rrr_path
-from lynxsim.tasks import find_tasks
+from lynxsim.tasks import Task, find_tasks
 
 __all__ = [
     "FIGURE20_FILE",
     "PATH_PLOT_SAMPLES",
     "WORKSPACE_ALPHAS_DEG",
     "WORKSPACE_RESOLUTION_M",
+    "rrr_jobs",
     "run_rrr_demo",
 ]
 
@@ -45,30 +51,94 @@ WORKSPACE_ALPHAS_DEG = (0.0, 20.0, -20.0, 50.0, -50.0)
 """The orientations of the report's Figure 21 [deg]."""
 WORKSPACE_RESOLUTION_M = 0.002
 """Grid step of the demo's workspace maps [m]."""
+_WORKSPACE_COST = 6 * PLOT_COST
+"""Cost of the workspace maps and their six plots, in frames (see :class:`Job`)."""
+_FIGURE20_COST = 4 * PLOT_COST
+"""Cost of the Figure 20 verdicts (settling and pulling in MuJoCo), in frames."""
 
 
-def _run_progress(
-    progress: Callable[[int, float], None] | None, index: int
-) -> Callable[[float], None] | None:
-    if progress is None:
-        return None
-    report = progress
+def _play(
+    task: Task, out: Path, render: RenderSettings, mode: int, progress: ProgressFn | None
+) -> RunReport:
+    """Plot, simulate and record one task; write its JSON report."""
+    path = path_from_task(task)
+    stem = file_stem(task.name, path.label)
+    poses = path.sample(np.linspace(0.0, path.duration, PATH_PLOT_SAMPLES)).pose
+    plot_rrr_path(
+        poses,
+        out / "plots" / f"{stem}.png",
+        mode=mode,
+        title=f"{task.name}: platform path ({path.label}, {path.duration:.2f} s), "
+        f"working mode {mode} ({mode_label(mode)})",
+    )
+    playback = run_rrr_path(
+        path,
+        task=task.name,
+        mode=mode,
+        video=out / f"{stem}.mp4",
+        render=render,
+        progress=progress,
+    )
+    playback.report.write_json(out / f"{stem}.json")
+    return playback.report
 
-    def update(fraction: float) -> None:
-        report(index, fraction)
 
-    return update
+def _workspace_plots(out: Path, mode: int, progress: ProgressFn | None = None) -> None:
+    """The workspace maps of the report's Figure 21 orientations, one plot each and together."""
+    alphas = [math.radians(a) for a in WORKSPACE_ALPHAS_DEG]
+    maps = workspace_maps(alphas, view_extent(alphas), WORKSPACE_RESOLUTION_M)
+    for wmap, alpha_deg in zip(maps, WORKSPACE_ALPHAS_DEG):
+        plot_rrr_workspace([wmap], out / "plots" / f"rrr_workspace_alpha{alpha_deg:+.0f}.png")
+    plot_rrr_workspace(maps, out / "plots" / "rrr_workspace.png", mode=mode)
+    if progress is not None:
+        progress(1.0)
+
+
+def _figure20(out: Path, progress: ProgressFn | None = None) -> None:
+    """The simulation's verdicts on the report's Figure 20 poses, into :data:`FIGURE20_FILE`."""
+    with atomic_path(out / FIGURE20_FILE) as tmp:
+        tmp.write_text(format_figure20_simulation(figure20_simulation()) + "\n")
+    if progress is not None:
+        progress(1.0)
+
+
+def rrr_jobs(
+    out: Path,
+    render: RenderSettings,
+    *,
+    tasks: Path = Path("tasks"),
+    mode: int = HOME_MODE,
+) -> list[Job[RunReport | None]]:
+    """The jobs of the 3-RRR part: each task's run (its report), the workspace maps, Figure 20.
+
+    Args:
+        out: Output folder (as :func:`run_rrr_demo`).
+        render: Video settings; the camera is always ``top``.
+        tasks: Folder of task files.
+        mode: Working mode 0..7 of every run.
+    """
+    settings = dataclasses.replace(render, camera="top")
+    jobs: list[Job[RunReport | None]] = []
+    for task in find_tasks(tasks, "rrr"):
+        path = path_from_task(task)
+        work = functools.partial(_play, task, out, settings, mode)
+        frames = path.duration * render.fps
+        jobs.append(Job(file_stem(task.name, path.label), PLOT_COST + frames, work))
+    workspace = functools.partial(_workspace_plots, out, mode)
+    jobs.append(Job("rrr_workspace", _WORKSPACE_COST, workspace))
+    jobs.append(Job(FIGURE20_FILE, _FIGURE20_COST, functools.partial(_figure20, out)))
+    return jobs
 
 
 def run_rrr_demo(
     out: Path,
     render: RenderSettings,
-    progress: Callable[[int, float], None] | None = None,
+    progress: JobProgress | None = None,
     *,
     tasks: Path = Path("tasks"),
     mode: int = HOME_MODE,
 ) -> list[RunReport]:
-    """Simulate, record and plot every 3-RRR task; judge Figure 20 by simulation.
+    """Simulate, record and plot every 3-RRR task; judge Figure 20 by simulation (in this process).
 
     Args:
         out: Output folder (videos, reports, ``rrr_figure20_simulation.txt``;
@@ -84,33 +154,10 @@ def run_rrr_demo(
     """
     out = Path(out)
     settings = dataclasses.replace(render, camera="top")
-    reports = []
-    for i, task in enumerate(find_tasks(tasks, "rrr")):
-        path = path_from_task(task)
-        stem = file_stem(task.name, path.label)
-        poses = path.sample(np.linspace(0.0, path.duration, PATH_PLOT_SAMPLES)).pose
-        plot_rrr_path(
-            poses,
-            out / "plots" / f"{stem}.png",
-            mode=mode,
-            title=f"{task.name}: platform path ({path.label}, {path.duration:.2f} s), "
-            f"working mode {mode} ({mode_label(mode)})",
-        )
-        playback = run_rrr_path(
-            path,
-            task=task.name,
-            mode=mode,
-            video=out / f"{stem}.mp4",
-            render=settings,
-            progress=_run_progress(progress, i),
-        )
-        playback.report.write_json(out / f"{stem}.json")
-        reports.append(playback.report)
-    alphas = [math.radians(a) for a in WORKSPACE_ALPHAS_DEG]
-    maps = workspace_maps(alphas, view_extent(alphas), WORKSPACE_RESOLUTION_M)
-    for wmap, alpha_deg in zip(maps, WORKSPACE_ALPHAS_DEG):
-        plot_rrr_workspace([wmap], out / "plots" / f"rrr_workspace_alpha{alpha_deg:+.0f}.png")
-    plot_rrr_workspace(maps, out / "plots" / "rrr_workspace.png", mode=mode)
-    with atomic_path(out / FIGURE20_FILE) as tmp:
-        tmp.write_text(format_figure20_simulation(figure20_simulation()) + "\n")
+    reports = [
+        _play(task, out, settings, mode, job_progress(progress, i))
+        for i, task in enumerate(find_tasks(tasks, "rrr"))
+    ]
+    _workspace_plots(out, mode)
+    _figure20(out)
     return reports

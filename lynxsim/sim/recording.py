@@ -4,7 +4,8 @@
 just stepped, or one of a batch) into an MP4: video time is simulated time,
 frame ``i`` shows the first recorded step at or after ``i / fps``, the tracked
 site's path so far (the log's ``tool``) is traced, targets are marked, and bodies of the robot
-touching an obstacle are drawn red.
+touching an obstacle are drawn red. Frames are drawn into one reused buffer and
+encoded while the next is drawn (:func:`~lynxsim.sim.video.mp4_writer`).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.sim.collision import classify_contacts
-from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
+from lynxsim.sim.render import Overlay, PathTrace, RenderSettings, SceneRenderer
 from lynxsim.sim.rollout import PlaybackLog, StepHook
 from lynxsim.sim.video import mp4_writer
 
@@ -71,25 +72,27 @@ def render_log(
     marks = np.asarray(targets, dtype=float).reshape(-1, 3)
     c = classify_contacts(log.meta.groups, log.contact_geoms, log.contact_dist)
     hit_step = log.contact_step[c.obstacle]
-    hit_geom = np.where(
-        c.carried_first[c.obstacle],
-        log.contact_geoms[c.obstacle, 0],
-        log.contact_geoms[c.obstacle, 1],
-    )
-    body_of = np.asarray(model.geom_bodyid)
+    hit_body = np.asarray(model.geom_bodyid)[
+        np.where(
+            c.carried_first[c.obstacle],
+            log.contact_geoms[c.obstacle, 0],
+            log.contact_geoms[c.obstacle, 1],
+        )
+    ]
+    trace = PathTrace.of(log.tool)
     frames = frame_steps(log.time_s, settings.fps)
+    image = np.empty((settings.height, settings.width, 3), dtype=np.uint8)
     with SceneRenderer(model, settings) as renderer, mp4_writer(video, settings.fps) as sink:
         for i, k in enumerate(frames.tolist()):
             data.qpos[:] = log.qpos[k]
             mujoco.mj_kinematics(model, data)
             mujoco.mj_camlight(model, data)
-            touching = frozenset(body_of[hit_geom[hit_step == k]].tolist())
             overlay = Overlay(
-                path=log.tool[: k + 1],
+                path=trace.until(k),
                 targets=marks,
-                contact_bodies=touching,
+                contact_bodies=frozenset(hit_body[hit_step == k].tolist()),
             )
-            sink.append_data(renderer.render(data, overlay))
+            sink.append_data(renderer.render(data, overlay, out=image))
             if progress is not None:
                 progress((i + 1) / len(frames))
     return len(frames)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import threading
 
 import imageio.v2 as imageio
 import mujoco
@@ -12,11 +13,68 @@ import pytest
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.model import VISUAL_GROUP, load_arm_scene
 from lynxsim.sim.arm.task import run_arm_trajectory
-from lynxsim.sim.render import Overlay, Quality, RenderSettings, SceneRenderer
-from lynxsim.sim.video import mp4_writer
+from lynxsim.sim.render import (
+    TRACE_TOLERANCE_M,
+    Overlay,
+    PathTrace,
+    Quality,
+    RenderSettings,
+    SceneRenderer,
+    simplify_polyline,
+)
+from lynxsim.sim.video import decoded_frames, mp4_writer
 from lynxsim.traj import ArmPose, generate
 
 FAST = RenderSettings(quality=Quality.FAST)
+CHANGED_PX = 30
+"""A pixel differs when its RGB values differ by more than this in sum."""
+
+
+def _distance_to_polyline(points, polyline):
+    """Distance of each point (N, 3) to the nearest segment of a polyline (K, 3) [m]."""
+    a, b = polyline[:-1], polyline[1:]
+    ab = b - a
+    rel = points[:, None, :] - a[None]
+    length2 = np.maximum((ab * ab).sum(-1), 1e-30)
+    t = np.clip((rel * ab[None]).sum(-1) / length2, 0.0, 1.0)
+    return np.linalg.norm(rel - t[..., None] * ab[None], axis=-1).min(axis=1)
+
+
+@pytest.mark.parametrize("seed", range(5), ids=lambda s: f"seed{s}")
+def test_simplified_polyline_stays_within_tolerance_and_keeps_its_ends(seed):
+    rng = np.random.default_rng(seed)
+    points = np.cumsum(rng.normal(scale=1e-3, size=(2000, 3)), axis=0)  # a random walk [m]
+    kept = simplify_polyline(points, TRACE_TOLERANCE_M)
+    assert kept[0] == 0
+    assert kept[-1] == len(points) - 1
+    assert (np.diff(kept) > 0).all()
+    assert len(kept) < len(points)
+    assert _distance_to_polyline(points, points[kept]).max() <= TRACE_TOLERANCE_M
+
+
+def test_a_straight_path_needs_its_two_ends_only():
+    line = np.linspace([0.0, 0.0, 0.0], [0.3, 0.1, 0.2], 500)
+    assert simplify_polyline(line, TRACE_TOLERANCE_M).tolist() == [0, 499]
+    assert simplify_polyline(line[:1], TRACE_TOLERANCE_M).tolist() == [0]
+    assert simplify_polyline(np.zeros((0, 3)), TRACE_TOLERANCE_M).tolist() == []
+
+
+@pytest.mark.parametrize("tolerance", [-1e-3, math.nan, math.inf], ids=["negative", "nan", "inf"])
+def test_simplify_refuses_a_bad_tolerance(tolerance):
+    with pytest.raises(InvalidInputError, match="tolerance_m must be finite and >= 0, got"):
+        simplify_polyline(np.zeros((3, 3)), tolerance)
+
+
+def test_trace_ends_at_the_current_step():
+    t = np.linspace(0.0, 2.0 * np.pi, 1000)
+    trace = PathTrace.of(np.stack([0.2 * np.cos(t), 0.2 * np.sin(t), 0.1 + 0 * t], axis=1))
+    for step in (0, 1, 137, 999):
+        drawn = trace.until(step)
+        np.testing.assert_array_equal(drawn[0], trace.points[0])
+        np.testing.assert_array_equal(drawn[-1], trace.points[step])
+        if step > 0:
+            gap = _distance_to_polyline(trace.points[: step + 1], drawn)
+            assert gap.max() <= 2 * TRACE_TOLERANCE_M
 
 
 @pytest.fixture(scope="module")
@@ -50,6 +108,51 @@ def test_frame_shows_the_arm():
     changed = np.abs(with_arm - without_arm).sum(axis=-1) > 30
     assert with_arm.std() > 10.0  # not a blank image
     assert changed.mean() > 0.01  # the arm covers a visible part of the frame
+
+
+def test_render_into_a_given_buffer_returns_it_with_the_same_frame():
+    model = load_arm_scene()
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, 0)
+    mujoco.mj_forward(model, data)
+    buffer = np.zeros((FAST.height, FAST.width, 3), dtype=np.uint8)
+    with SceneRenderer(model, FAST) as renderer:
+        renderer.render(data)  # the first frame of a context differs by a level or two
+        fresh = renderer.render(data)
+        assert renderer.render(data, out=buffer) is buffer
+    np.testing.assert_array_equal(buffer, fresh)
+
+
+def test_the_trace_looks_like_the_path_through_every_step():
+    model = load_arm_scene()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    t = np.linspace(0.0, 1.5 * np.pi, 600)  # every step drawn (no more than the cap)
+    path = np.stack([0.15 + 0.1 * np.cos(t), 0.1 * np.sin(t), 0.25 + 0.05 * t], axis=1)
+    trace = PathTrace.of(path)
+    assert len(trace.kept) < 100
+    with SceneRenderer(model, FAST) as renderer:
+        renderer.render(data)  # the first frame of a context differs by a level or two
+        plain = renderer.render(data).astype(int)
+        every = renderer.render(data, Overlay(path=path)).astype(int)
+        traced = renderer.render(data, Overlay(path=trace.until(len(path) - 1))).astype(int)
+    drawn = (np.abs(every - plain).sum(axis=-1) > CHANGED_PX).sum()
+    differ = (np.abs(traced - every).sum(axis=-1) > CHANGED_PX).sum()
+    assert drawn > 500
+    assert differ < 0.1 * drawn  # line ends and joins
+
+
+@pytest.mark.parametrize(
+    ("quality", "multisampling", "shadows"),
+    [(Quality.FAST, False, False), (Quality.MEDIUM, False, True), (Quality.DEFAULT, True, True)],
+    ids=lambda v: getattr(v, "value", str(v)),
+)
+def test_quality_presets_choose_shadows_and_multisampling(quality, multisampling, shadows):
+    model = load_arm_scene()
+    samples = int(model.vis.quality.offsamples)
+    with SceneRenderer(model, RenderSettings(width=64, height=48, quality=quality)) as renderer:
+        assert bool(renderer._renderer.scene.flags[int(mujoco.mjtRndFlag.mjRND_SHADOW)]) is shadows
+    assert int(model.vis.quality.offsamples) == (samples if multisampling else 0)
 
 
 def test_overlay_marks_targets_and_path():
@@ -96,3 +199,56 @@ def test_failed_video_leaves_no_file(tmp_path):
 def test_video_writer_validates_arguments(tmp_path, dest, fps, message):
     with pytest.raises(InvalidInputError, match=message), mp4_writer(tmp_path / dest, fps):
         pass
+
+
+def test_frames_of_any_size_are_encoded_to_whole_macroblocks(tmp_path):
+    dest = tmp_path / "odd.mp4"
+    frames = np.random.default_rng(1).integers(0, 255, size=(5, 70, 100, 3), dtype=np.uint8)
+    with mp4_writer(dest, 10.0) as sink:
+        for frame in frames:
+            sink.append_data(frame)
+    assert decoded_frames(dest) == 5
+    assert imageio.get_reader(dest).get_data(0).shape == (80, 112, 3)
+
+
+@pytest.mark.parametrize(
+    ("second", "message"),
+    [
+        (np.zeros((48, 64, 3), dtype=np.uint8), r"one size: \(64, 96, 3\), then \(48, 64, 3\)"),
+        (np.zeros((64, 96, 3)), r"must be \(height, width, 3\) uint8, got \(64, 96, 3\) float64"),
+        (np.zeros((64, 96), dtype=np.uint8), r"must be \(height, width, 3\) uint8, got \(64, 96\)"),
+    ],
+    ids=["size", "dtype", "channels"],
+)
+def test_a_bad_frame_is_refused_and_leaves_no_file(tmp_path, second, message):
+    with pytest.raises(InvalidInputError, match=message):
+        _write(tmp_path / "a.mp4", [np.zeros((64, 96, 3), dtype=np.uint8), second])
+    assert list(tmp_path.iterdir()) == []
+
+
+def _write(dest, frames, then=None):
+    with mp4_writer(dest, 30.0) as sink:
+        for frame in frames:
+            sink.append_data(frame)
+        if then is not None:
+            raise then
+
+
+def test_an_interrupt_stops_the_encoder_and_leaves_no_file(tmp_path):
+    frames = [np.zeros((480, 640, 3), dtype=np.uint8)] * 20
+    with pytest.raises(KeyboardInterrupt):
+        _write(tmp_path / "a.mp4", frames, then=KeyboardInterrupt())
+    assert list(tmp_path.iterdir()) == []
+    assert "mp4-writer" not in [t.name for t in threading.enumerate()]
+
+
+def test_frames_are_copied_so_the_caller_may_reuse_its_buffer(tmp_path):
+    dest = tmp_path / "a.mp4"
+    buffer = np.zeros((64, 96, 3), dtype=np.uint8)
+    with mp4_writer(dest, 10.0) as sink:
+        for value in (0, 255):
+            buffer[:] = value
+            sink.append_data(buffer)
+    first, second = (f.astype(int).mean() for f in imageio.get_reader(dest))
+    assert first < 5
+    assert second > 250
