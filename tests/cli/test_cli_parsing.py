@@ -35,6 +35,7 @@ COMMANDS = [
     ("demo",),
     ("env",),
     ("dataset",),
+    ("sweep",),
 ]
 """Every (sub-)command, ``()`` for ``lynxsim`` itself."""
 
@@ -83,7 +84,7 @@ def test_help_prints_usage_and_exits_zero(capsys, command, flag):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        ([], "required: {fk,ik,workspace,traj,plan,play,rrr,demo,env,dataset}"),
+        ([], "required: {fk,ik,workspace,traj,plan,play,rrr,demo,env,dataset,sweep}"),
         (["fk"], "required: Q1, Q2, Q3, Q4, Q5"),
         (["fk", "1", "2"], "required: Q3, Q4, Q5"),
         (["fk", "1", "2", "3", "4", "5", "6"], "unrecognized arguments: 6"),
@@ -223,7 +224,7 @@ def test_out_names_a_file_and_out_dir_a_folder():
                 assert action.metavar == "DIR", command
                 writes_a_folder.add(command)
     assert writes_a_file == {("workspace",), ("play",), ("rrr", "workspace"), ("rrr", "poses")}
-    assert writes_a_folder == {("traj",), ("plan",), ("demo",), ("dataset",)}
+    assert writes_a_folder == {("traj",), ("plan",), ("demo",), ("dataset",), ("sweep",)}
 
 
 @pytest.mark.parametrize(

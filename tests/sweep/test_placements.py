@@ -1,0 +1,46 @@
+"""Boxes and spheres swept too: judged placements equal their own runs (three_obstacles)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from lynxsim.scene import Scene
+from lynxsim.sim.arm.planning import task_trajectory
+from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sweep.placements import PlacementJudge, Verdict
+from lynxsim.sweep.recorded import record_run
+from lynxsim.tasks import load_task
+from tests.sweep.conftest import TASKS
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["box", "sphere"])
+def test_judged_box_and_sphere_placements_equal_their_own_runs(name):
+    task = load_task(TASKS / "three_obstacles.toml")
+    trajectory = task_trajectory(task, "line")
+    obstacle = task.scene.obstacle(name)
+    others = tuple(o for o in task.scene.obstacles if o.name != name)
+    run = record_run(
+        trajectory, task=task.name, scene=Scene(others, task.scene.table, task.scene.cube)
+    )
+    gx, gy = np.meshgrid(np.arange(-250, 451, 50) / 1000.0, np.arange(-500, 501, 50) / 1000.0)
+    x, y = gx.reshape(-1), gy.reshape(-1)
+    judged = PlacementJudge(run, obstacle).judge(x, y)
+    rng = np.random.default_rng(0)
+    for code in (Verdict.CLEAR, Verdict.COLLIDED):
+        rows = np.flatnonzero(judged.verdict == code)
+        assert len(rows) >= 3
+        for j in rng.choice(rows, size=3, replace=False).tolist():
+            moved = dataclasses.replace(obstacle, position=(x[j], y[j], obstacle.position[2]))
+            scene = Scene((*others, moved), task.scene.table, task.scene.cube)
+            report = run_arm_trajectory(trajectory, task=task.name, scene=scene).report
+            own = next(o for o in report.obstacles if o.name == name)
+            assert own.collided == (code == Verdict.COLLIDED)
+            if code == Verdict.CLEAR:
+                assert own.min_clearance_m == judged.min_clearance_m[j]
+                assert own.min_clearance_time_s == judged.min_clearance_time_s[j]
+            else:
+                assert own.first_contact_s == judged.first_contact_s[j]
