@@ -45,7 +45,10 @@ NUMBERS = [
 ]  # fmt: skip
 """Numeric positions: valid, negative literals, huge, tiny, non-finite, malformed."""
 
-WORDS = ["arm", "rrr", "quintic", "ruckig", "planned", "front", "top", "side", "fast", "-h"]
+WORDS = [
+    "arm", "rrr", "quintic", "ruckig", "planned", "front", "top", "side", "fast", "-h", "npz",
+    "minari", "ray", "local", "1-3", "3-1", "LynxReach-v1", "a/b-v0",
+]  # fmt: skip
 """Other tokens: names, choices, wrong choices."""
 
 FLAGS: dict[str, list[str]] = {
@@ -68,7 +71,14 @@ FLAGS: dict[str, list[str]] = {
     "rrr ik": ["--si", "--json", "--mode"],
     "rrr workspace": ["--alpha-deg", "--out", "--resolution-mm", "--mode"],
     "rrr poses": ["--out", "--mode"],
-    "env": ["--policy", "--episodes", "--seed", "--env", "--video", "--video-episodes"],
+    "env": [
+        "--policy", "--episodes", "--seed", "--env", "--video", "--video-episodes",
+        "--random-obstacles", "--action-noise", "--no-obstacle",
+    ],
+    "dataset": [
+        "--env", "--episodes", "--noise", "--seed", "--out-dir", "--format", "--dataset-id",
+    ],
+    "sweep": ["--out-dir", "--backend", "--jobs", "--no-maps", "--json"],
 }  # fmt: skip
 """Options of each sub-command the fuzzer combines (``demo`` only with ``--help``: minutes)."""
 
@@ -125,6 +135,8 @@ def random_argv(rng: random.Random, sandbox: dict[str, Path]) -> list[str]:
         n = POSITIONALS[command] + rng.choice([0, 0, 0, -1, 1])
         argv += [rng.choice(NUMBERS[:12]) if rng.random() < 0.6 else rng.choice(pool)
                  for _ in range(max(n, 0))]  # fmt: skip
+    elif command == "sweep":  # never a valid sweep file: a sweep runs thousands of runs
+        argv.append(rng.choice(paths))
     elif command in ("traj", "play", "plan"):
         task = rng.choice([sandbox["arm_task"]] * 4 + [sandbox["evil_task"], sandbox["rrr_task"]])
         argv.append(str(task) if rng.random() < 0.9 else rng.choice(paths))
@@ -136,8 +148,9 @@ def random_argv(rng: random.Random, sandbox: dict[str, Path]) -> list[str]:
             argv.append(rng.choice(pool))
     if command == "play" and "--out" not in argv and rng.random() < 0.8:
         argv.append("--no-video")  # keep most runs short; some still film
-    if command == "env":
-        argv += ["--episodes", "1", "--quiet"] if "--episodes" not in argv else ["--quiet"]
+    if command in ("env", "dataset", "sweep"):
+        many = command != "sweep" and "--episodes" not in argv
+        argv += ["--episodes", "1", "--quiet"] if many else ["--quiet"]
     if command == "plan" and "--time-limit-s" not in argv:
         argv += ["--time-limit-s", "1"]  # a blocked plan fails in a second
     if command == "workspace" and "--samples" not in argv:

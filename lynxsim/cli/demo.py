@@ -55,10 +55,13 @@ def _simulations(args: argparse.Namespace) -> None:
     from lynxsim.demo.arm import arm_jobs, arm_runs
     from lynxsim.demo.expert import EXPERT_SEED, EXPERT_VIDEO, expert_job
     from lynxsim.demo.jobs import Job, run_jobs
+    from lynxsim.demo.obstacle_map import MAP_DIR, MAP_STEP_MM, MapSummary, map_job
     from lynxsim.demo.rrr import FIGURE20_FILE, rrr_jobs
     from lynxsim.envs.evaluation import EpisodeStats
+    from lynxsim.envs.registration import PICK_AND_PLACE_ID
     from lynxsim.sim.render import Quality, RenderSettings
     from lynxsim.sim.report import RunReport
+    from lynxsim.sweep.maps import REPORT_MAP_TASKS
     from lynxsim.tasks import find_tasks
 
     out: Path = args.out_dir
@@ -66,14 +69,20 @@ def _simulations(args: argparse.Namespace) -> None:
     n_rrr = len(find_tasks(args.tasks, "rrr"))
     quality = Quality(args.quality)
     render = RenderSettings(quality=quality)
-    jobs: list[Job[RunReport | EpisodeStats | None]] = [
+    jobs: list[Job[RunReport | EpisodeStats | MapSummary | None]] = [
         *arm_jobs(runs, out, render),
         *rrr_jobs(out, render, tasks=args.tasks),
         expert_job(out, quality),
     ]
+    n_other = len(jobs)
+    if all((args.tasks / name).is_file() for name in REPORT_MAP_TASKS):
+        jobs.append(map_job(out, args.tasks))
+    else:
+        print(f"skipped: the obstacle map needs {', '.join(REPORT_MAP_TASKS)} in {args.tasks}")
     workers = min(args.jobs, len(jobs))
     print(
-        f"\nSimulating {len(runs)} arm runs, {n_rrr} 3-RRR runs and an expert episode into "
+        f"\nSimulating {len(runs)} arm runs, {n_rrr} 3-RRR runs, an expert episode"
+        f"{f' and a {MAP_STEP_MM:g} mm obstacle map' if len(jobs) > n_other else ''} into "
         f"{out}/ ({len(jobs)} jobs, {workers} at a time, {quality.value} rendering)"
     )
     with tqdm(total=len(jobs), unit="job", disable=args.quiet, file=sys.stderr) as bar:
@@ -93,11 +102,21 @@ def _simulations(args: argparse.Namespace) -> None:
         if isinstance(stats, EpisodeStats):
             first = "-" if stats.first_success_step is None else str(stats.first_success_step)
             print(
-                f"\nLynxPickAndPlace-v0, scripted expert, seed {EXPERT_SEED}: success "
+                f"\n{PICK_AND_PLACE_ID}, scripted expert, seed {EXPERT_SEED}: success "
                 f"{stats.success} (first at step {first} of {stats.steps}), return "
                 f"{stats.episode_return:.1f}, arm-obstacle contact steps {stats.collision_steps}; "
                 f"video {out / EXPERT_VIDEO}"
             )
+    for summary in results:
+        if isinstance(summary, MapSummary):
+            print(
+                f"\nWhere may the report's cylinder stand? Its centre on a {MAP_STEP_MM:g} mm grid "
+                "over the table: share of placements each motion clears"
+            )
+            for task, kind, placements, clear in summary.rows:
+                share = clear / placements if placements else 0.0
+                print(f"  {task:20s} {kind:8s} {clear:5d} of {placements:5d} ({share:.0%})")
+            print(f"  maps in {out / MAP_DIR}/")
     print(f"\nVideos and JSON reports in {out}/, plots in {out / 'plots'}/")
 
 

@@ -7,12 +7,13 @@ from pathlib import Path
 
 from lynxsim.demo.jobs import Job
 from lynxsim.envs.evaluation import EpisodeStats, record_expert_episode
+from lynxsim.envs.registration import PICK_AND_PLACE_ID
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import Quality
 
 __all__ = ["EXPERT_SEED", "EXPERT_VIDEO", "expert_job"]
 
-EXPERT_VIDEO = "LynxPickAndPlace-v0_expert.mp4"
+EXPERT_VIDEO = f"{PICK_AND_PLACE_ID}_expert.mp4"
 """Name of the episode's video in the output folder."""
 EXPERT_SEED = 0
 """Seed of the recorded episode."""
@@ -21,7 +22,6 @@ _EXPERT_COST = 300.0
 
 
 def _record(dest: Path, quality: Quality, progress: ProgressFn | None) -> EpisodeStats:
-    # The envs accept every Quality; their annotation still lists "fast" and "default" only.
     stats = record_expert_episode(dest, seed=EXPERT_SEED, quality=quality.value)
     if progress is not None:
         progress(1.0)

@@ -236,7 +236,7 @@ def evaluate(
     (``collision_check="physics_step"``), so a graze is never missed.
 
     Args:
-        env_id: A registered id, e.g. ``"LynxPickAndPlace-v0"``.
+        env_id: A registered id, e.g. ``"LynxPickAndPlace-v1"``.
         policy: ``"expert"`` or ``"random"``.
         episodes: How many, > 0.
         seed: Seed of the first episode (and of the random policy).
@@ -297,7 +297,7 @@ def record_expert_episode(
     Args:
         dest: Output path, ending in ``.mp4``; written atomically.
         seed: Seed of the episode.
-        env_id: ``"LynxPickAndPlace-v0"`` (default) or ``"LynxReach-v0"``.
+        env_id: ``"LynxPickAndPlace-v1"`` (default), ``"LynxReach-v1"`` or an older version.
         width: Frame width [px].
         height: Frame height [px].
         camera: ``"front"`` or ``"top"``.

@@ -18,7 +18,7 @@ pitch that is.
 
 Usage::
 
-    env = gym.make("LynxPickAndPlace-v0", random_obstacles=(1, 3))
+    env = gym.make("LynxPickAndPlace-v1", random_obstacles=(1, 3))
     expert = PickAndPlaceExpert(env)
     obs, _ = env.reset(seed=0)
     expert.reset()

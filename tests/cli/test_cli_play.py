@@ -100,7 +100,8 @@ def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
         assert (out / "plots" / f"rrr_workspace_alpha{alpha}.png").is_file()
     assert "e (300 mm, 250 mm, -40 deg): simulation says UNREACHABLE" in printed
     assert "scripted expert, seed 0: success True" in printed
-    assert imageio.get_reader(out / "LynxPickAndPlace-v0_expert.mp4").count_frames() > 50
+    assert imageio.get_reader(out / "LynxPickAndPlace-v1_expert.mp4").count_frames() > 50
+    assert "skipped: the obstacle map needs" in printed
 
 
 def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys):
