@@ -25,7 +25,7 @@ import lynxsim.sim  # noqa: F401
 # isort: split
 import mujoco
 
-from lynxsim.envs import ENV_IDS, PICK_AND_PLACE_ID
+from lynxsim.envs import LATEST_ENV_IDS, PICK_AND_PLACE_ID
 from lynxsim.envs.base import LynxArmEnv
 
 REPEATS = 5
@@ -130,7 +130,7 @@ def main() -> None:
         f"{'env':22s} {'control':8s} {'step [us]':>10s} {'physics [us]':>13s} {'share':>7s} "
         f"{'target':>7s} {'steps/s':>9s} {'gym.make [us]':>14s}"
     )
-    for env_id in ENV_IDS:
+    for env_id in LATEST_ENV_IDS:
         for control in ("tool", "joint"):
             t_step, t_phys = step_vs_physics(env_id, control, args.steps)
             share = t_phys / t_step

@@ -24,7 +24,19 @@ from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
 
-__all__ = ["RANGE_TOL", "LogMeta", "PlaybackLog", "StepHook", "mujoco_warnings", "rollout"]
+__all__ = [
+    "RANGE_TOL",
+    "LogMeta",
+    "PlaybackLog",
+    "RunCommands",
+    "StepHook",
+    "StepRecords",
+    "finish_log",
+    "mujoco_warnings",
+    "plan_commands",
+    "rest_at_start",
+    "rollout",
+]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
@@ -159,7 +171,7 @@ def _fresh_run(
     data: mujoco.MjData,
     ctrl_adr: IntArray,
     ctrl: FloatArray,
-    record: _Records,
+    record: StepRecords,
     on_step: StepHook | None,
 ) -> int:
     """Step with the positions and contacts brought to each new state (for a hook that reads them).
@@ -173,10 +185,8 @@ def _fresh_run(
         mujoco.mj_step(model, data)
         if not (np.isfinite(qpos).all() and np.isfinite(qvel).all()):
             return k
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_collision(model, data)
         record.state(k, data)
-        record.positions(k, data)
+        record.pose(k, model, data)
         if on_step is not None:
             on_step(k, data)
     return len(ctrl)
@@ -187,7 +197,7 @@ def _lagged_run(
     data: mujoco.MjData,
     ctrl_adr: IntArray,
     ctrl: FloatArray,
-    record: _Records,
+    record: StepRecords,
 ) -> None:
     """Step, taking each state's positions and contacts from the next step's own forward pass.
 
@@ -205,13 +215,18 @@ def _lagged_run(
         if k:
             positions(k - 1, data)
         state(k, data)
-    mujoco.mj_kinematics(model, data)
-    mujoco.mj_collision(model, data)
-    positions(len(ctrl) - 1, data)
+    record.pose(len(ctrl) - 1, model, data)
 
 
-class _Records:
-    """Preallocated per-step records of a rollout; contacts kept raw, classified at the end."""
+class StepRecords:
+    """Preallocated per-step records of a run; contacts kept raw, classified at the end.
+
+    Args:
+        model: The model.
+        steps: Number of steps S to record.
+        tool_site: Id of the tracked site.
+        groups: The collision groups (the carried geoms' poses are recorded).
+    """
 
     def __init__(
         self, model: mujoco.MjModel, steps: int, tool_site: int, groups: CollisionGroups
@@ -255,6 +270,16 @@ class _Records:
             self._count = p + n
         self.contact_start[k + 1] = self._count
 
+    def pose(self, k: int, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        """Compute the positions and contacts of the state in ``data`` and record them as step k's.
+
+        ``mj_kinematics`` + ``mj_collision``: the same positions and contacts as
+        the forward pass of a ``mj_step`` that starts from this state.
+        """
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        self.positions(k, data)
+
     def contacts(
         self, groups: CollisionGroups, steps: int
     ) -> tuple[IntArray, IntArray, FloatArray]:
@@ -265,6 +290,163 @@ class _Records:
         c = classify_contacts(groups, geoms, dist)
         keep = c.obstacle | c.self_hit | c.support
         return step[keep], geoms[keep], dist[keep]
+
+
+@dataclass(frozen=True)
+class RunCommands:
+    """A run's checked commands as the controls of each physics step (H held, S recorded).
+
+    Attributes:
+        q_cmd: Commanded joints of the trajectory, (T, n) [rad].
+        tool_ref: Commanded tool point per sample, (T, 3) [m].
+        ctrl_adr: Actuators the controls set, (c,): the commanded joints', then
+            the gripper's if it is commanded.
+        hold: Controls of the unrecorded hold, (H, c) (``q_cmd[0]``, gripper
+            opening at ``-presettle_s + k dt``).
+        ctrl: Controls of the recorded steps, (S, c): ``q_cmd``, then its last
+            sample held for the settling.
+        settle_steps: How many of the S recorded steps settle.
+    """
+
+    q_cmd: FloatArray
+    tool_ref: FloatArray
+    ctrl_adr: IntArray
+    hold: FloatArray
+    ctrl: FloatArray
+    settle_steps: int
+
+
+def plan_commands(
+    model: mujoco.MjModel,
+    binding: RobotBinding,
+    q_cmd: FloatArray,
+    tool_ref: FloatArray,
+    *,
+    settle_s: float,
+    presettle_s: float,
+    gripper_cmd: Callable[[float], float] | None,
+) -> RunCommands:
+    """Check a run's commands and lay out the controls of every step (see :func:`rollout`).
+
+    Raises:
+        InvalidInputError: Shapes disagree, or commands are not finite.
+        LimitViolationError: A command leaves its joint's range (names joint and time).
+    """
+    q_cmd = np.asarray(q_cmd, dtype=float)
+    tool_ref = np.asarray(tool_ref, dtype=float)
+    n = len(binding.actuator_ids)
+    if q_cmd.ndim != 2 or q_cmd.shape[1] != n or len(q_cmd) == 0:
+        raise InvalidInputError(f"q_cmd must have shape (T, {n}), got {q_cmd.shape}")
+    if tool_ref.shape != (len(q_cmd), 3):
+        raise InvalidInputError(f"tool_ref must have shape ({len(q_cmd)}, 3), got {tool_ref.shape}")
+    if not (np.isfinite(q_cmd).all() and np.isfinite(tool_ref).all()):
+        raise InvalidInputError("commands must be finite")
+    dt = float(model.opt.timestep)
+    _check_ranges(model, binding, q_cmd, dt)
+    settle_steps = round(settle_s / dt)
+    steps = len(q_cmd) + settle_steps
+    presettle_steps = round(presettle_s / dt)
+    ctrl_adr = binding.actuator_ids
+    hold = np.repeat(q_cmd[:1], presettle_steps, axis=0)
+    ctrl = np.concatenate([q_cmd, np.repeat(q_cmd[-1:], settle_steps, axis=0)])
+    gripper = binding.gripper_actuator_id
+    if gripper is not None and gripper_cmd is not None:
+        ctrl_adr = np.append(ctrl_adr, gripper)
+        opening = [gripper_cmd((k - presettle_steps) * dt) for k in range(presettle_steps)]
+        hold = np.column_stack([hold, opening])
+        ctrl = np.column_stack([ctrl, [gripper_cmd(k * dt) for k in range(steps)]])
+    return RunCommands(
+        q_cmd=q_cmd,
+        tool_ref=tool_ref,
+        ctrl_adr=ctrl_adr,
+        hold=hold,
+        ctrl=ctrl,
+        settle_steps=settle_steps,
+    )
+
+
+def rest_at_start(
+    model: mujoco.MjModel, data: mujoco.MjData, binding: RobotBinding, q0: FloatArray
+) -> None:
+    """Reset ``data``: the commanded joints at rest at ``q0``, (n,) [rad], targets there."""
+    mujoco.mj_resetData(model, data)
+    data.qpos[binding.qpos_adr] = q0
+    data.ctrl[binding.actuator_ids] = q0
+    mujoco.mj_forward(model, data)
+
+
+def finish_log(
+    model: mujoco.MjModel,
+    binding: RobotBinding,
+    commands: RunCommands,
+    record: StepRecords,
+    recorded: int,
+    *,
+    task: str,
+    trajectory: str,
+    warnings: dict[str, int],
+    diverged_at_s: float | None,
+) -> PlaybackLog:
+    """A run's log from its records: contacts classified, clearances computed, all steps at once.
+
+    Args:
+        model: The model.
+        binding: What was driven and watched.
+        commands: The run's commands.
+        record: Its records, complete for the first ``recorded`` steps.
+        recorded: Steps recorded (fewer than planned if the state diverged).
+        task: Task name for the log.
+        trajectory: Trajectory type name for the log.
+        warnings: MuJoCo warning counts by name, of the whole run (hold included).
+        diverged_at_s: Time at which the state became non-finite [s], or None.
+
+    Returns:
+        The :class:`PlaybackLog`.
+    """
+    dt = float(model.opt.timestep)
+    groups = binding.groups
+    ctrl = commands.ctrl
+    c_step, c_geoms, c_dist = record.contacts(groups, recorded)
+    qpos = record.qpos[:recorded].copy()
+    clearance = clearances_of_states(
+        model,
+        mujoco.MjData(model),
+        groups,
+        qpos,
+        record.geom_xpos[:recorded, record.carried],
+        record.geom_xmat[:recorded, record.carried],
+    )
+    tool_ref, settle_steps = commands.tool_ref, commands.settle_steps
+    ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
+    meta = LogMeta(
+        task=task,
+        trajectory=trajectory,
+        physics_dt_s=dt,
+        geom_names=tuple(model.geom(g).name for g in range(model.ngeom)),
+        groups=groups,
+        force_limit=np.abs(np.asarray(model.actuator_forcerange)[binding.actuator_ids]).max(axis=1),
+    )
+    n = len(binding.actuator_ids)
+    return PlaybackLog(
+        meta=meta,
+        time_s=record.time[:recorded].copy(),
+        qpos=qpos,
+        q_cmd=ctrl[:recorded, :n].copy(),
+        q=qpos[:, binding.qpos_adr],
+        tool_ref=ref,
+        tool=record.tool[:recorded].copy(),
+        force=record.force[:recorded, binding.actuator_ids],
+        clearance_m=clearance,
+        contact_step=c_step,
+        contact_geoms=c_geoms,
+        contact_dist=c_dist,
+        trajectory_steps=min(len(commands.q_cmd), recorded),
+        duration_s=len(commands.q_cmd) * dt,
+        settle_s=settle_steps * dt,
+        tool_target=tool_ref[-1].copy(),
+        warnings=warnings,
+        diverged_at_s=diverged_at_s,
+    )
 
 
 def rollout(
@@ -316,47 +498,31 @@ def rollout(
         InvalidInputError: Shapes disagree, or commands are not finite.
         LimitViolationError: A command leaves its joint's range (names joint and time).
     """
-    q_cmd = np.asarray(q_cmd, dtype=float)
-    tool_ref = np.asarray(tool_ref, dtype=float)
-    n = len(binding.actuator_ids)
-    if q_cmd.ndim != 2 or q_cmd.shape[1] != n or len(q_cmd) == 0:
-        raise InvalidInputError(f"q_cmd must have shape (T, {n}), got {q_cmd.shape}")
-    if tool_ref.shape != (len(q_cmd), 3):
-        raise InvalidInputError(f"tool_ref must have shape ({len(q_cmd)}, 3), got {tool_ref.shape}")
-    if not (np.isfinite(q_cmd).all() and np.isfinite(tool_ref).all()):
-        raise InvalidInputError("commands must be finite")
-    dt = float(model.opt.timestep)
-    _check_ranges(model, binding, q_cmd, dt)
-    settle_steps = round(settle_s / dt)
-    steps = len(q_cmd) + settle_steps
-
-    mujoco.mj_resetData(model, data)
-    data.qpos[binding.qpos_adr] = q_cmd[0]
-    data.ctrl[binding.actuator_ids] = q_cmd[0]
-    gripper = binding.gripper_actuator_id if gripper_cmd is not None else None
-    mujoco.mj_forward(model, data)
-    presettle_steps = round(presettle_s / dt)
-    for k in range(presettle_steps):
-        if gripper is not None and gripper_cmd is not None:
-            data.ctrl[gripper] = gripper_cmd((k - presettle_steps) * dt)
+    commands = plan_commands(
+        model,
+        binding,
+        q_cmd,
+        tool_ref,
+        settle_s=settle_s,
+        presettle_s=presettle_s,
+        gripper_cmd=gripper_cmd,
+    )
+    ctrl_adr, ctrl = commands.ctrl_adr, commands.ctrl
+    steps = len(ctrl)
+    rest_at_start(model, data, binding, commands.q_cmd[0])
+    for hold in commands.hold:
+        data.ctrl[ctrl_adr] = hold
         mujoco.mj_step(model, data)
     data.time = 0.0  # the record starts here; warnings of the hold still count
 
-    groups = binding.groups
-    ctrl_adr = binding.actuator_ids
-    ctrl = np.concatenate([q_cmd, np.repeat(q_cmd[-1:], settle_steps, axis=0)])
-    if gripper is not None and gripper_cmd is not None:
-        ctrl_adr = np.append(ctrl_adr, gripper)
-        opening = [gripper_cmd(k * dt) for k in range(steps)]
-        ctrl = np.column_stack([ctrl, opening])
     start = mujoco.MjData(model) if on_step is None else None
     if start is not None:
         mujoco.mj_copyData(start, model, data)
-    record = _Records(model, steps, binding.tool_site_id, groups)
+    record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
     recorded = steps
     if on_step is None:
         _lagged_run(model, data, ctrl_adr, ctrl, record)
-    clock = np.cumsum(np.full(steps, dt))  # data.time without a reset: dt added per step
+    clock = np.cumsum(np.full(steps, float(model.opt.timestep)))  # data.time: dt added per step
     finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
     if on_step is not None or not finite or not np.array_equal(record.time, clock):
         # A bad state: MuJoCo resets it (time included) inside mj_step, so the
@@ -364,45 +530,16 @@ def rollout(
         # (deterministic), each state posed on its own, cut where it diverged.
         if start is not None:
             mujoco.mj_copyData(data, model, start)
-        record = _Records(model, steps, binding.tool_site_id, groups)
+        record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
         recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step)
-    diverged_at = None if recorded == steps else float(data.time)
-    c_step, c_geoms, c_dist = record.contacts(groups, recorded)
-    qpos = record.qpos[:recorded].copy()
-    clearance = clearances_of_states(
+    return finish_log(
         model,
-        mujoco.MjData(model),
-        groups,
-        qpos,
-        record.geom_xpos[:recorded, record.carried],
-        record.geom_xmat[:recorded, record.carried],
-    )
-    ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
-    meta = LogMeta(
+        binding,
+        commands,
+        record,
+        recorded,
         task=task,
         trajectory=trajectory,
-        physics_dt_s=dt,
-        geom_names=tuple(model.geom(g).name for g in range(model.ngeom)),
-        groups=groups,
-        force_limit=np.abs(np.asarray(model.actuator_forcerange)[binding.actuator_ids]).max(axis=1),
-    )
-    return PlaybackLog(
-        meta=meta,
-        time_s=record.time[:recorded].copy(),
-        qpos=qpos,
-        q_cmd=ctrl[:recorded, :n].copy(),
-        q=qpos[:, binding.qpos_adr],
-        tool_ref=ref,
-        tool=record.tool[:recorded].copy(),
-        force=record.force[:recorded, binding.actuator_ids],
-        clearance_m=clearance,
-        contact_step=c_step,
-        contact_geoms=c_geoms,
-        contact_dist=c_dist,
-        trajectory_steps=min(len(q_cmd), recorded),
-        duration_s=len(q_cmd) * dt,
-        settle_s=settle_steps * dt,
-        tool_target=tool_ref[-1].copy(),
         warnings=mujoco_warnings(data),
-        diverged_at_s=diverged_at,
+        diverged_at_s=None if recorded == steps else float(data.time),
     )

@@ -1,0 +1,111 @@
+"""Batch rollouts beside a Python loop of single playbacks, on 1 and 2 threads.
+
+Run: ``python benchmarks/bench_batch.py``.
+
+The same runs (every shipped arm task with every waypoint trajectory type, the
+gripper scheduled where the scene has a cube, reports included) are played in
+one process as (a) a loop of :func:`~lynxsim.sim.arm.playback.play_arm`,
+(b) :func:`~lynxsim.sim.batch.play_arm_batch` on one thread, (c) on two; the
+wall times (medians) and their ratios are printed, then where the batch's time
+goes (one profiled batch on one thread). Issue 12's targets: (c) >= 1.8x (b),
+and the batch >= 5x the loop.
+"""
+
+from __future__ import annotations
+
+import cProfile
+import os
+import pstats
+import statistics
+import time
+from collections.abc import Callable
+from pathlib import Path
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first imported
+
+from lynxsim.arm.task import build_trajectory
+from lynxsim.sim.arm.model import load_arm_scene
+from lynxsim.sim.arm.playback import play_arm
+from lynxsim.sim.arm.task import pick_and_place_gripper
+from lynxsim.sim.batch import play_arm_batch
+from lynxsim.sim.summary import Playback
+from lynxsim.tasks import load_task
+from lynxsim.traj import WAYPOINT_KINDS
+
+ROOT = Path(__file__).resolve().parents[1]
+REPEATS = 3
+PARTS = {
+    "native stepping (mujoco.batch)": "_step_natively",
+    "posing each state (kinematics + collision, Python)": "pose",
+    "clearances (after the run)": "clearances_of_states",
+    "summaries": "summarize",
+}
+"""Where the batch's time goes: label -> profiled function name."""
+
+
+def _median_s(fn: Callable[[], object]) -> float:
+    times = []
+    for _ in range(REPEATS):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return statistics.median(times)
+
+
+def main() -> None:
+    """Print wall times and ratios of the loop and the batch on 1 and 2 threads."""
+    tasks = [t for t in map(load_task, sorted((ROOT / "tasks").glob("*.toml"))) if t.robot == "arm"]
+    groups = []  # one batch per scene (a batch plays one model)
+    for task in tasks:
+        model = load_arm_scene(task.scene)
+        trajectories = [build_trajectory(task, kind) for kind in WAYPOINT_KINDS]
+        grippers = [
+            None if task.scene.cube is None else pick_and_place_gripper(t.duration)
+            for t in trajectories
+        ]
+        groups.append((model, task.name, trajectories, grippers))
+    runs = sum(len(g[2]) for g in groups)
+    steps = sum(round((t.duration + 0.5) / g[0].opt.timestep) for g in groups for t in g[2])
+
+    def loop() -> list[Playback]:
+        return [
+            play_arm(model, t, task=name, gripper_cmd=g)
+            for model, name, trajectories, grippers in groups
+            for t, g in zip(trajectories, grippers, strict=True)
+        ]
+
+    def batch(nthread: int) -> list[Playback]:
+        return [
+            p
+            for model, name, trajectories, grippers in groups
+            for p in play_arm_batch(
+                model, trajectories, task=name, gripper_cmds=grippers, nthread=nthread
+            )
+        ]
+
+    reference = loop()
+    for nthread in (1, 2):
+        assert [p.report for p in batch(nthread)] == [p.report for p in reference]
+    t_loop = _median_s(loop)
+    t_one = _median_s(lambda: batch(1))
+    t_two = _median_s(lambda: batch(2))
+    print(f"{runs} runs, {steps} recorded steps, {os.cpu_count()} CPUs, medians of {REPEATS}")
+    print(f"  (a) loop of play_arm     {t_loop:7.3f} s  {t_loop / steps * 1e6:6.1f} us/step")
+    print(f"  (b) batch, 1 thread      {t_one:7.3f} s  {t_one / steps * 1e6:6.1f} us/step")
+    print(f"  (c) batch, 2 threads     {t_two:7.3f} s  {t_two / steps * 1e6:6.1f} us/step")
+    print(f"  2 threads / 1 thread: {t_one / t_two:.2f}x (target >= 1.8x)")
+    print(f"  batch (2 threads) / loop: {t_loop / t_two:.2f}x (target >= 5x)")
+    print(f"  batch (1 thread) / loop:  {t_loop / t_one:.2f}x")
+
+    profile = cProfile.Profile()
+    profile.runcall(batch, 1)
+    stats = pstats.Stats(profile).stats  # type: ignore[attr-defined]
+    total = sum(tt for _, _, tt, _, _ in stats.values())
+    print(f"where a 1-thread batch's {total:.3f} s go (profiled):")
+    for label, name in PARTS.items():
+        cum = sum(ct for (_, _, fn), (_, _, _, ct, _) in stats.items() if fn == name)
+        print(f"  {label:52s} {cum:7.3f} s  {cum / total:5.1%}")
+
+
+if __name__ == "__main__":
+    main()
