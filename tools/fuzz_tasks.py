@@ -303,6 +303,8 @@ def _mutate_once(rng: random.Random, data: dict[str, Any], others: list[dict[str
         isinstance(node, float) or (type(node) is int and abs(node) <= 2**53)
     ):
         op = "special"
+    if op == "scale" and type(node) is int and abs(node) > 2**53:
+        op = "special"  # an int beyond a float (an earlier mutation's) cannot be scaled
     if op == "delete":
         del parent[key]
     elif op == "replace":
