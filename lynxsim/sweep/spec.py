@@ -53,6 +53,7 @@ import numpy.typing as npt
 
 from lynxsim.bounds import MAX_CELLS
 from lynxsim.errors import TaskFileError
+from lynxsim.robots import robot
 from lynxsim.scene import TABLE, Box, Obstacle
 from lynxsim.tasks import Task, _Reader, load_task
 from lynxsim.traj.kinds import WAYPOINT_KINDS, TrajectoryKind
@@ -300,8 +301,12 @@ def _tasks(r: _Reader, raw: object, folder: Path) -> tuple[tuple[Task, ...], tup
             raise r.fail(field, str(exc)) from None
         except OSError as exc:
             raise r.fail(field, f"cannot read {path}: {exc.strerror or exc}") from None
-        if task.robot != "arm":
-            raise r.fail(field, f"{path} is a task of robot {task.robot!r}; sweeps take arm tasks")
+        if not robot(task.robot).scene:  # obstacles are swept through the table scene
+            raise r.fail(
+                field,
+                f"{path} is a task of robot {task.robot!r}, which stands in no table scene; "
+                "sweeps move obstacles of the table scene",
+            )
         if any(t.name == task.name for t in tasks):
             raise r.fail(field, f"two tasks are named {task.name!r}; names must be unique")
         tasks.append(task)
