@@ -1,4 +1,4 @@
-"""Env throughput: steps/s per action mode beside the physics alone, vector envs, frames/s.
+"""Env throughput: steps/s per action mode beside the physics alone, vector envs, pixels, frames/s.
 
 Run: ``python benchmarks/bench_env.py [--steps N]``.
 
@@ -8,6 +8,8 @@ targets written to ``data.ctrl``, then ``mj_step(model, data, nstep=frame_skip)`
 from the same reset, so both integrate the very same trajectory. The physics
 share is physics time / step time (best of several repeats each).
 Targets (issue 6): share >= 0.85 with joint actions, >= 0.75 with tool actions.
+Image observations (issue 13): steps/s of pick-and-place with one camera at 84x84
+and 128x128 beside the state-only env, the same rollout in the same run.
 """
 
 from __future__ import annotations
@@ -30,6 +32,8 @@ from lynxsim.envs.base import LynxArmEnv
 
 REPEATS = 5
 SHARE_TARGET = {"joint": 0.85, "tool": 0.75}
+PIXEL_SIZES = (None, 84, 128)
+"""Image observation sides [px] timed (None: the state-only env)."""
 
 
 def best_of(fn: Callable[[], float], repeats: int = REPEATS) -> float:
@@ -105,6 +109,28 @@ def vector_steps_per_s(mode: str, num_envs: int, steps: int) -> float:
     return num_envs * steps / t
 
 
+def pixel_steps_per_s(side: int | None, steps: int) -> float:
+    """Steps/s of pick-and-place with image observations of camera "front", side x side px.
+
+    ``side`` None times the state-only env. The renderer is made before timing.
+    """
+    pixels = {} if side is None else {"pixels": ("front",), "pixel_width": side}
+    env = gym.make(PICK_AND_PLACE_ID, **pixels, pixel_height=side or 84).unwrapped
+    env.action_space.seed(0)
+    actions = [env.action_space.sample() for _ in range(steps)]
+
+    def run() -> float:
+        env.reset(seed=0)
+        start = time.perf_counter()
+        for a in actions:
+            env.step(a)
+        return time.perf_counter() - start
+
+    t = best_of(run, 3) / steps
+    env.close()
+    return 1.0 / t
+
+
 def frames_per_s(quality: str, frames: int) -> float:
     """rgb_array frames/s at the default size (640x480, camera "front")."""
     env = gym.make(PICK_AND_PLACE_ID, render_mode="rgb_array", render_quality=quality)
@@ -145,6 +171,14 @@ def main() -> None:
     for mode in ("sync", "async"):
         rate = vector_steps_per_s(mode, 2, args.steps // 2)
         print(f"vector env ({mode:5s}, 2 x {PICK_AND_PLACE_ID}): {rate:9,.0f} env steps/s")
+    pixel_steps = max(args.steps // 10, 20)
+    print(f"\nimage observations, camera 'front', quality fast, {pixel_steps} steps, best of 3")
+    rates = {side: pixel_steps_per_s(side, pixel_steps) for side in PIXEL_SIZES}
+    for side, rate in rates.items():
+        label = "state only" if side is None else f"pixels {side}x{side}"
+        per_image = "" if side is None else f"  (+{(1 / rate - 1 / rates[None]) * 1e3:.2f} ms/step)"
+        print(f"{PICK_AND_PLACE_ID} {label:16s}: {rate:9,.0f} steps/s{per_image}")
+    print()
     for quality in ("fast", "default"):
         print(f"rgb_array 640x480, quality {quality:7s}: {frames_per_s(quality, 40):6.1f} frames/s")
 

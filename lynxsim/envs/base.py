@@ -43,7 +43,7 @@ from lynxsim.envs.control import (
     TargetStatus,
     ToolSpaceController,
 )
-from lynxsim.envs.rendering import RENDER_MODES, EnvRenderer
+from lynxsim.envs.rendering import RENDER_MODES, EnvRenderer, PixelRenderer
 from lynxsim.envs.reward import RewardType, collision_flags, goal_distance, goal_reward
 from lynxsim.envs.workspace import (
     GRIP_ROLL_RAD,
@@ -75,7 +75,8 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
-Obs = dict[str, FloatArray]
+Obs = dict[str, npt.NDArray[Any]]
+"""An observation: float64 arrays, and a uint8 ``"pixels"`` array with image observations."""
 
 READY_TOOL_POSE = (0.18, 0.0, 0.08, TOP_DOWN_PITCH_RAD)
 """Tool point (x, y, z) [m] and pitch [rad] of the arm at reset: 18 cm in front of
@@ -217,7 +218,12 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         height: Frame height [px].
         camera: Camera of the scene (``"front"`` or ``"top"``).
         render_quality: ``"fast"`` (no shadows), ``"medium"`` (shadows) or ``"default"``
-            (shadows and multisampling).
+            (shadows and multisampling); of ``render()`` frames and image observations.
+        pixels: Cameras of the image observation (``"front"``, ``"top"``), in
+            channel order; a name or a sequence of distinct names; ``()`` (default):
+            no ``"pixels"`` entry.
+        pixel_width: Width of the image observation [px].
+        pixel_height: Height of the image observation [px].
 
     Raises:
         InvalidInputError: A bad argument (the message names it and the valid choices).
@@ -253,8 +259,12 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         height: int = 480,
         camera: str = "front",
         render_quality: Literal["fast", "medium", "default"] = "fast",
+        pixels: str | Sequence[str] = (),
+        pixel_width: int = 84,
+        pixel_height: int = 84,
     ) -> None:
         quality = _enum(Quality, render_quality, "render_quality")
+        pixel_settings = _pixel_settings(pixels, pixel_width, pixel_height, quality)
         if not isinstance(camera, str):
             raise InvalidInputError(f"camera must be a camera name (a string), got {camera!r}")
         width = count(width, "width", 1, _MAX_FRAME_PX)
@@ -317,13 +327,15 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         if self._slots is not None:
             self._slots.place(())
         self.frame_skip = check_control_dt(control_dt, float(self.model.opt.timestep))
-        _check_frame(self.model, settings)
+        for frame in (settings, *pixel_settings):
+            _check_frame(self.model, frame)
         fps = self._control_rate = 1.0 / self.dt
         self.metadata = {
             **self.metadata,
             "render_fps": round(fps) if abs(fps - round(fps)) < 1e-9 else fps,
         }
         self._renderer = EnvRenderer(self.model, render_mode, settings)
+        self._pixels = PixelRenderer(self.model, pixel_settings) if pixel_settings else None
         self._resolve_ids()
 
         if self.control is ControlMode.TOOL:
@@ -344,15 +356,18 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._n_act = n_act
         self.action_space = gym.spaces.Box(-1.0, 1.0, shape=(n_act,), dtype=np.float32)
         box = gym.spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float64)
-        self.observation_space = gym.spaces.Dict(  # type: ignore[assignment]
-            {
-                "observation": gym.spaces.Box(
-                    -np.inf, np.inf, shape=(self._OBS_SIZE,), dtype=np.float64
-                ),
-                "achieved_goal": box,
-                "desired_goal": box,
-            }
-        )
+        spaces: dict[str, gym.Space[Any]] = {
+            "observation": gym.spaces.Box(
+                -np.inf, np.inf, shape=(self._OBS_SIZE,), dtype=np.float64
+            ),
+            "achieved_goal": box,
+            "desired_goal": box,
+        }
+        if pixel_settings:
+            first = pixel_settings[0]
+            shape = (first.height, first.width, 3 * len(pixel_settings))
+            spaces["pixels"] = gym.spaces.Box(0, 255, shape=shape, dtype=np.uint8)
+        self.observation_space = gym.spaces.Dict(spaces)  # type: ignore[assignment]
         status, q_ready = ik_nearest(*READY_TOOL_POSE, GRIP_ROLL_RAD, LYNX_ARM.q_min)
         if q_ready is None:  # pragma: no cover - a property of the arm, tested at reset
             raise LynxsimError(f"the ready pose is unreachable ({status.name})")
@@ -515,6 +530,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         x, y, z, _ = tool_pose_of(q)
         self._tool_now = (x, y, z)
         obs = self._observation()
+        if self._pixels is not None:
+            obs["pixels"] = self._pixels.render(d)
         if self.render_mode == "human":
             self.render()
         return obs, self._info(obs, False, TargetStatus.ACCEPTED, held=False)
@@ -650,6 +667,8 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         collision = self._simulate()
 
         obs = self._observation()
+        if self._pixels is not None:
+            obs["pixels"] = self._pixels.render(self.data)
         info = self._info(obs, collision, status, held=self._controller.target == before)
         terminated = collision and self.terminate_on_collision
         if self.render_mode == "human":
@@ -742,9 +761,16 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         frame: npt.NDArray[np.uint8] | None = self._renderer.render(self.data, self._goal)
         return frame
 
+    @property
+    def pixel_cameras(self) -> tuple[str, ...]:
+        """Cameras of the image observation, in channel order (empty without one)."""
+        return () if self._pixels is None else tuple(s.camera for s in self._pixels.settings)
+
     def close(self) -> None:
-        """Free the renderer and close the viewer window, if any."""
+        """Free the renderers and close the viewer window, if any."""
         self._renderer.close()
+        if self._pixels is not None:
+            self._pixels.close()
 
 
 def _obstacle_range(value: object) -> tuple[int, int] | None:
@@ -764,6 +790,31 @@ def _obstacle_range(value: object) -> tuple[int, int] | None:
     fewest = count(pair[0], "random_obstacles (fewest)", 0, MAX_RANDOM_OBSTACLES)
     most = count(pair[1], "random_obstacles (most)", fewest, MAX_RANDOM_OBSTACLES)
     return fewest, most
+
+
+def _pixel_settings(
+    cameras: object, width: object, height: object, quality: Quality
+) -> tuple[RenderSettings, ...]:
+    """The frames of the image observation, one per camera (none without one).
+
+    Raises:
+        InvalidInputError: ``pixels`` not a camera name or a sequence of distinct
+            names, or a size not an integer in 1.._MAX_FRAME_PX.
+    """
+    names = (cameras,) if isinstance(cameras, str) else cameras
+    if not isinstance(names, list | tuple) or not all(isinstance(n, str) for n in names):
+        raise InvalidInputError(
+            f"pixels must be a camera name or a sequence of them (e.g. ('front', 'top')), "
+            f"got {cameras!r}"
+        )
+    if len(set(names)) != len(names):
+        raise InvalidInputError(f"pixels must name distinct cameras, got {cameras!r}")
+    width = count(width, "pixel_width", 1, _MAX_FRAME_PX)
+    height = count(height, "pixel_height", 1, _MAX_FRAME_PX)
+    return tuple(
+        RenderSettings(width=width, height=height, camera=n, quality=quality, sites=False)
+        for n in names
+    )
 
 
 def _check_frame(model: mujoco.MjModel, settings: RenderSettings) -> None:

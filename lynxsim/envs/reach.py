@@ -32,7 +32,8 @@ class ReachEnv(LynxArmEnv):
     ``control="joint"``: ``Box(-1, 1, (5,), float32)``, deltas of q1..q5
     (+1 = + ``joint_step`` [rad], 0.05).
 
-    **Observation** (a dict, float64, freshly allocated): ``achieved_goal`` is the
+    **Observation** (a dict, float64, freshly allocated; with ``pixels`` also the
+    uint8 ``"pixels"``): ``achieved_goal`` is the
     tool point, ``desired_goal`` the goal, both shape (3,) [m]; ``observation`` has
     shape (26,):
 
@@ -64,11 +65,13 @@ class ReachEnv(LynxArmEnv):
     **Episode end**: as pick-and-place (no termination on success; optional on
     collision); truncation at ``max_episode_steps`` (100 steps = 4 s as registered).
 
-    **Info**, **arguments** and **rendering**: as :class:`~lynxsim.envs.PickAndPlaceEnv`, without
+    **Info**, **arguments**, **rendering** and **image observations** (``pixels``: a
+    uint8 ``obs["pixels"]`` of shape (``pixel_height``, ``pixel_width``, 3 x cameras),
+    the goal not drawn): as :class:`~lynxsim.envs.PickAndPlaceEnv`, without
     ``goal_in_air_prob``.
 
     **Version history**: v1: an infeasible tool request moves the target as far as
-    is feasible (was: held); ``random_obstacles`` (off by default). v0: first
+    is feasible (was: held); ``random_obstacles`` and ``pixels`` (off by default). v0: first
     release (still registered, with ``target_fallback="hold"``).
     """
 

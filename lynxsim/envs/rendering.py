@@ -1,6 +1,7 @@
-"""Frames and windows for the envs, made lazily in the process that asks for them.
+"""Frames, windows and image observations for the envs, made lazily where they are needed.
 
-``rgb_array`` frames come from a :class:`~lynxsim.sim.render.SceneRenderer`
+``rgb_array`` frames and image observations (:class:`PixelRenderer`, on GL
+contexts of their own) come from :class:`~lynxsim.sim.render.SceneRenderer`
 (EGL off-screen on a headless machine), ``human`` from a passive
 :mod:`mujoco.viewer` window. Nothing is made before the first frame, so vector
 envs render in their workers. A process forked after an env of this module made a
@@ -19,7 +20,7 @@ import numpy.typing as npt
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
 
-__all__ = ["RENDER_MODES", "EnvRenderer", "has_display"]
+__all__ = ["RENDER_MODES", "EnvRenderer", "PixelRenderer", "has_display"]
 
 RENDER_MODES = ("human", "rgb_array")
 
@@ -30,6 +31,24 @@ _gl_pid: int | None = None
 def has_display() -> bool:
     """Whether a display server is named in the environment (X11 or Wayland)."""
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def _scene_renderer(model: mujoco.MjModel, settings: RenderSettings) -> SceneRenderer:
+    """A new renderer (and GL context) in this process, unless it was forked after one was made.
+
+    Raises:
+        LynxsimError: This process was forked after its parent made a GL context.
+    """
+    global _gl_pid
+    if _gl_pid is not None and _gl_pid != os.getpid():
+        raise LynxsimError(
+            "cannot render in a process forked after its parent created a GL context; "
+            "make async vector envs with vector_kwargs={'context': 'forkserver'} (or "
+            "'spawn'), or render in the parent only after forking"
+        )
+    scene = SceneRenderer(model, settings)
+    _gl_pid = os.getpid()
+    return scene
 
 
 class EnvRenderer:
@@ -83,7 +102,7 @@ class EnvRenderer:
         """A frame (``rgb_array``: (height, width, 3) uint8, goal marked), or None."""
         if self.mode == "rgb_array":
             if self._scene is None:
-                self._scene = self._make_scene_renderer()
+                self._scene = _scene_renderer(self._model, self.settings)
             return self._scene.render(data, Overlay(targets=goal.reshape(1, 3)))
         if self.mode == "human":
             if self._viewer is None:
@@ -93,18 +112,6 @@ class EnvRenderer:
             self._viewer.sync()
         return None
 
-    def _make_scene_renderer(self) -> SceneRenderer:
-        global _gl_pid
-        if _gl_pid is not None and _gl_pid != os.getpid():
-            raise LynxsimError(
-                "cannot render in a process forked after its parent created a GL context; "
-                "make async vector envs with vector_kwargs={'context': 'forkserver'} (or "
-                "'spawn'), or render in the parent only after forking"
-            )
-        scene = SceneRenderer(self._model, self.settings)
-        _gl_pid = os.getpid()
-        return scene
-
     def close(self) -> None:
         """Free the GL context and close the window, if any (idempotent)."""
         if self._scene is not None:
@@ -113,3 +120,51 @@ class EnvRenderer:
         if self._viewer is not None:
             self._viewer.close()
             self._viewer = None
+
+
+class PixelRenderer:
+    """Image observations: the frames of some cameras, side by side along the channels.
+
+    One :class:`~lynxsim.sim.render.SceneRenderer` (GL context) per camera, apart
+    from :class:`EnvRenderer`'s, made at the first frame in the process that asks
+    for it. Sites are not drawn (the goal mark would contradict a relabelled goal)
+    and nothing is overlaid: a frame shows the arm, the table, the cube and the
+    obstacles only.
+
+    Args:
+        model: The env's model.
+        settings: One per camera, in order: size, camera and quality of its frames.
+    """
+
+    def __init__(self, model: mujoco.MjModel, settings: tuple[RenderSettings, ...]) -> None:
+        self._model = model
+        self.settings = settings
+        self._scenes: list[SceneRenderer] = []
+
+    def __getstate__(self) -> dict[str, Any]:
+        """State for pickling: without the GL contexts (made again on the next frame)."""
+        state = self.__dict__.copy()
+        state["_scenes"] = []
+        return state
+
+    @property
+    def started(self) -> bool:
+        """Whether the GL contexts exist."""
+        return bool(self._scenes)
+
+    def render(self, data: mujoco.MjData) -> npt.NDArray[np.uint8]:
+        """The frames of ``data``, shape (height, width, 3 * cameras), uint8, a new array.
+
+        Channels ``3k:3k+3`` are the RGB frame of camera ``k``.
+        """
+        if not self._scenes:
+            self._scenes = [_scene_renderer(self._model, s) for s in self.settings]
+        if len(self._scenes) == 1:
+            return self._scenes[0].render(data)
+        return np.concatenate([scene.render(data) for scene in self._scenes], axis=2)
+
+    def close(self) -> None:
+        """Free the GL contexts, if any (idempotent)."""
+        for scene in self._scenes:
+            scene.close()
+        self._scenes = []
