@@ -131,7 +131,8 @@ _FOLLOW_TOL_RAD = 1e-6
 _PITCH_TOL_RAD = 1e-9
 """Rounding allowed beyond the controller's pitch range (which it clips) [rad]."""
 _PLAN_TIME_S = 10.0
-"""Time limit of one planning attempt [s]."""
+"""Time limit of one planning attempt [s]: generous (a search takes ~0.1 s), because a
+search cut by the clock would make the expert's actions depend on the machine's load."""
 _PLAN_ATTEMPTS = 3
 """Attempts (new seeds) before a move is given up for this step."""
 
