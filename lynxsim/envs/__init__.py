@@ -37,10 +37,12 @@ __all__ = [
     "LATEST_ENV_IDS",
     "PICK_AND_PLACE_ID",
     "REACH_ID",
+    "Domain",
     "EpisodeStats",
     "EvaluationSummary",
     "PickAndPlaceEnv",
     "PickAndPlaceExpert",
+    "Randomization",
     "ReachEnv",
     "ReachExpert",
     "evaluate",
@@ -49,6 +51,8 @@ __all__ = [
 ]
 
 _LAZY = {
+    "Domain": "lynxsim.envs.randomization",
+    "Randomization": "lynxsim.envs.randomization",
     "PickAndPlaceEnv": "lynxsim.envs.pick_and_place",
     "ReachEnv": "lynxsim.envs.reach",
     "PickAndPlaceExpert": "lynxsim.envs.expert",

@@ -161,6 +161,25 @@ class PickAndPlaceEnv(LynxArmEnv):
     obstacles. The scripted expert (:class:`~lynxsim.envs.PickAndPlaceExpert`)
     plans around them.
 
+    **Domain randomisation** (off by default; ``randomize=`` a
+    :class:`~lynxsim.envs.Randomization`, or per episode
+    ``reset(options={"randomize": ...})``, None for none): every ``reset`` starts
+    from the compiled model and draws from ``np_random``, before the cube and the
+    goal, uniformly: the cube's edge (0.005..0.03 m; it rests on the table, and a
+    goal on the table is at its centre height), mass and sliding friction; the
+    five arm servos' ``kp`` (``gainprm[0]`` and ``biasprm[1] = -kp`` together) and
+    the five arm joints' damping, each within ``1 +- tolerance`` (0.1 is a usual
+    tolerance of a hobby servo motor's torque constant; the datasheets give
+    nominal values only); each camera's position (+- ``camera_shift_m`` per axis)
+    and orientation (turned about a random axis by up to ``camera_tilt_rad``).
+    The cube's geom size, bounding box and radius, its body mass and inertia
+    (a solid cube) are written and ``mj_setConst`` recomputes what depends on
+    them, so the cube collides and moves like a cube compiled at that size (tested).
+    :attr:`domain` reports the episode's values (nominal where not randomised).
+    Default arguments leave everything, observations included, bit for bit as
+    without the feature. The scripted expert assumes the 25 mm cube (it judges a
+    grip from the finger opening: 21-27 mm).
+
     **Episode end**: no termination on success (``info["is_success"]`` reports it
     every step); with ``terminate_on_collision`` an arm–obstacle contact terminates.
     Truncation at ``max_episode_steps`` (200 steps = 8 s as registered).
@@ -184,7 +203,8 @@ class PickAndPlaceEnv(LynxArmEnv):
     ``pitch_step`` [rad], ``joint_step`` [rad], ``width``, ``height`` [px],
     ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"fast"``, ``"medium"``,
     ``"default"``), ``pixels`` (camera names; ``()``: none), ``pixel_width``,
-    ``pixel_height`` [px] (84).
+    ``pixel_height`` [px] (84), ``randomize`` (None or a
+    :class:`~lynxsim.envs.Randomization`).
 
     **Rendering**: ``render_mode="rgb_array"`` returns (height, width, 3) uint8 frames
     (MuJoCo's EGL off-screen context on a headless machine: import ``lynxsim`` or
@@ -197,9 +217,34 @@ class PickAndPlaceEnv(LynxArmEnv):
     parent made a GL context cannot render (EGL deadlocks there, so it raises): then
     pass ``vector_kwargs={"context": "forkserver"}``.
 
+    **For RL users**:
+
+    - Check the env with ``gymnasium.utils.env_checker.check_env(env.unwrapped)``
+      (``gym.make`` wraps it in ``PassiveEnvChecker`` and ``TimeLimit``).
+    - Hindsight relabelling with ``collision_penalty > 0``: ``compute_reward``
+      reads ``info["collision"]``, so Stable-Baselines3's ``HerReplayBuffer`` needs
+      ``replay_buffer_kwargs={"copy_info_dict": True}``; without it the buffer
+      passes empty infos and relabelled rewards silently lose the penalty.
+    - Scales of ``observation`` (abs max over 20 expert episodes, 4,000 steps, seeds
+      0-19, default arguments): positions (0-2, 5-10, 41-43) up to 0.25 m, gripper
+      entries (4, 40) 0..0.03 m, angles (3, 24-28, 35-39, 44) up to pi rad,
+      velocities (15-20) up to about 0.9 m/s, joint velocities (29-33) up to
+      5 rad/s, the cube's angular velocity (21-23) up to about 12 rad/s
+      when it tumbles, gripper rate (34) up to 0.12 m/s. Normalise per entry
+      (e.g. ``VecNormalize``) rather than by one scale.
+    - Constant in the default task (``control="tool"``): entry 39, the commanded
+      wrist roll q5 = pi (std 2e-13 over those 20 episodes; the only entry with
+      std < 1e-9); the measured q5 (28) varies by about 2e-5 rad only. Drop
+      them or guard the normalisation's divisor against zero.
+    - Image observations with PyTorch's CUDA wheels: import ``torch`` (and
+      initialise CUDA) before the env makes its first GL context (the first
+      ``render()``, or the first ``reset`` with ``pixels``); the other order can
+      clash over the EGL/GPU driver libraries.
+
     **Version history**: v1: an infeasible tool request moves the target as far as
-    is feasible (was: held); ``random_obstacles`` and ``pixels`` (off by default). v0: first
-    release (still registered, with ``target_fallback="hold"``).
+    is feasible (was: held); ``random_obstacles``, ``pixels`` and ``randomize``
+    (off by default). v0: first release (still registered, with
+    ``target_fallback="hold"``).
     """
 
     _HAS_CUBE: ClassVar[bool] = True
@@ -240,13 +285,21 @@ class PickAndPlaceEnv(LynxArmEnv):
         joint = int(body.jntadr[0])
         self._cube_qpos = int(m.jnt_qposadr[joint])
         self._cube_dof = int(m.jnt_dofadr[joint])
-        self._rest_z = self.table_top_z + CUBE_HALF_SIZE_M
-        r, a, _ = self.CUBE_REGION.radius, self.CUBE_REGION.azimuth, None
+        self._set_cube_half_size(CUBE_HALF_SIZE_M)
+
+    def _set_cube_half_size(self, half: float) -> None:
+        """Set where a cube of half-edge ``half`` [m] rests and where goals are drawn."""
+        self._cube_half_m = half
+        self._rest_z = self.table_top_z + half
+        r, a = self.CUBE_REGION.radius, self.CUBE_REGION.azimuth
         self._table_region = PolarRegion(r, a, (self._rest_z, self._rest_z))
         lo, hi = self.AIR_HEIGHT_M
         self._air_region = PolarRegion(r, a, (self._rest_z + lo, self._rest_z + hi))
 
     def _sample_task(self) -> None:
+        size = self.domain.cube_size_m
+        if size is not None and 0.5 * size != self._cube_half_m:
+            self._set_cube_half_size(0.5 * size)
         cube = self._draw_point(self._table_region)
         in_air = self.np_random.uniform() < self.goal_in_air_prob
         goal = self._draw_point(self._air_region if in_air else self._table_region, cube)

@@ -67,8 +67,10 @@ class ReachEnv(LynxArmEnv):
 
     **Info**, **arguments**, **rendering** and **image observations** (``pixels``: a
     uint8 ``obs["pixels"]`` of shape (``pixel_height``, ``pixel_width``, 3 x cameras),
-    the goal not drawn): as :class:`~lynxsim.envs.PickAndPlaceEnv`, without
-    ``goal_in_air_prob``.
+    the goal not drawn), **domain randomisation** (``randomize``: servo gains,
+    joint damping and cameras; a :class:`~lynxsim.envs.Randomization` that
+    touches the cube is refused) and **for RL users**: as
+    :class:`~lynxsim.envs.PickAndPlaceEnv`, without ``goal_in_air_prob``.
 
     **Version history**: v1: an infeasible tool request moves the target as far as
     is feasible (was: held); ``random_obstacles`` and ``pixels`` (off by default). v0: first
