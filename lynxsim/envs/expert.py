@@ -73,15 +73,18 @@ _NEAR_M = 0.008
 """A tool point this close to its command [m] may go on to the next phase unsettled."""
 _SLOW = 0.4
 """Fraction of the full speed for the moves down to the table."""
-_ALIGN_M = 0.0225
-"""Tool height above the cube centre while centring over it [m] (fingertips 2 mm
-above the cube's top: one full step down takes them past it)."""
+_FINGERTIP_M = 0.008
+"""How far the fingertips reach below the tool point [m]."""
+_ALIGN_ABOVE_TOP_M = 0.002
+"""Fingertip height above the cube's top while centring over it [m]: one full step
+down takes them past it."""
+_ON_TOP_SLACK_M = 0.0025
+"""A plunging tool point higher above the cube's centre than half the cube plus the
+fingertip reach, less this [m], has its fingertips on the cube's top: the plunge is
+given up at once."""
 _GRASP_ABOVE_M = 0.003
 """Tool height above the cube's centre at the grasp [m]: the pads cover its faces, the
 palm stays off its top."""
-_ON_TOP_M = 0.018
-"""A plunging tool point still this high above the cube centre [m] has its
-fingertips on the cube's top: the plunge is given up at once."""
 _CENTRED_M = 0.004
 """The command counts as centred over the cube within this [m] (the tool within twice)."""
 _PRE_GRASP_WAIT = 20
@@ -103,16 +106,11 @@ _PITCH_SEARCH_RAD = np.linspace(TOP_DOWN_PITCH_RAD, math.pi / 2, 61)
 """Pitches tried, in order, when the gripper cannot point straight down at a point [rad]."""
 _GRIP_CLOSE_STEPS = 6
 """Steps the gripper gets to close before the lift."""
-_GRIPPED_MAX_M = 2 * CUBE_HALF_SIZE_M + 0.002
-"""Largest finger opening that means the cube is held [m]."""
-_GRIPPED_MIN_M = 2 * CUBE_HALF_SIZE_M - 0.004
-"""Smallest finger opening that still means the cube is between the fingers [m]."""
 _IN_HAND_M = 0.02
 """Largest cube-to-tool distance of a held cube [m]."""
 _RELEASE_STEPS = 3
 """Steps the gripper gets at least to open before the arm backs off ..."""
-_OPENED_M = 0.0275
-"""... until the fingers stand this far apart [m] (the cube is 25 mm)."""
+"""... until the fingers stand 2.5 mm wider than the cube."""
 _REOPEN_STEPS = 5
 """Steps the gripper gets to open after a missed grasp."""
 _KNOCKED = 0.8
@@ -435,12 +433,19 @@ class PickAndPlaceExpert:
         self._planner = _Planner(u, controller)
         self._mover = _Mover(self._planner, u.q_ready)
         self._idx = PickAndPlaceEnv.OBS_INDEX
-        self._rest_z = u.table_top_z + CUBE_HALF_SIZE_M
+        self._env = u
         self._threshold = u.distance_threshold
         self.reset()
 
     def reset(self) -> None:
-        """Forget the episode (call after every ``env.reset``)."""
+        """Forget the episode and read its cube's size (call after every ``env.reset``)."""
+        size = self._env.domain.cube_size_m or 2 * CUBE_HALF_SIZE_M
+        half = 0.5 * size
+        self._rest_z = self._env.table_top_z + half
+        self._align = half + _FINGERTIP_M + _ALIGN_ABOVE_TOP_M
+        self._on_top = half + _FINGERTIP_M - _ON_TOP_SLACK_M
+        self._gripped = (size - 0.004, size + 0.002)
+        self._opened = size + 0.0025
         self.phase = _Phase.APPROACH
         self._count = 0
         self._offset: Point = (0.0, 0.0, 0.0)
@@ -488,7 +493,7 @@ class PickAndPlaceExpert:
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.ALIGN:
             # Above the cube, fingertips clear of its top, until centred over it.
-            point = (cube[0], cube[1], cube[2] + _ALIGN_M)
+            point = (cube[0], cube[1], cube[2] + self._align)
             arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), c, _SLOW)
             centred = (
                 math.dist(cmd[:2], cube[:2]) < _CENTRED_M
@@ -512,19 +517,19 @@ class PickAndPlaceExpert:
                 self._hold_at = point_pose = (cmd[0], cmd[1], point[2], TOP_DOWN_PITCH_RAD)
                 arm, _ = _straight(cmd, point_pose, c, _SLOW)
             elif self._count > _PLUNGE_STEPS or (
-                self._count >= 2 and tool[2] - base > _ON_TOP_M
+                self._count >= 2 and tool[2] - base > self._on_top
             ):  # landed on the cube or beside it: up and again
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.GRASP:  # close, holding the arm where the grasp began
             arm, _ = _straight(cmd, self._hold_at, c, _SLOW)
             grip = -1.0
             if self._count >= _GRIP_CLOSE_STEPS:
-                if _GRIPPED_MIN_M <= opening <= _GRIPPED_MAX_M:
+                if self._gripped[0] <= opening <= self._gripped[1]:
                     self._enter(_Phase.LIFT)
                 elif self._count > _MAX_WAIT_STEPS:
                     self._enter(_Phase.REOPEN)
         elif phase is _Phase.REOPEN:
-            point = (cmd[0], cmd[1], cube[2] + _ALIGN_M)
+            point = (cmd[0], cmd[1], cube[2] + self._align)
             arm, _ = _straight(cmd, (*point, cmd[3]), c, _SLOW)
             if self._count >= _REOPEN_STEPS:
                 self._enter(_Phase.ALIGN)
@@ -543,7 +548,7 @@ class PickAndPlaceExpert:
                 self._enter(_Phase.APPROACH)
         elif phase is _Phase.RELEASE:  # open, holding the arm where the cube was put down
             arm, _ = _straight(cmd, self._hold_at, c, _SLOW)
-            opened = opening > _OPENED_M
+            opened = opening > self._opened
             if self._count >= _RELEASE_STEPS and (opened or self._count > _MAX_WAIT_STEPS):
                 self._enter(_Phase.RETREAT)
         else:  # RETREAT straight up (a jerk upwards drags the cube along the fingers)

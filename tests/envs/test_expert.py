@@ -6,7 +6,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from lynxsim.envs import PickAndPlaceExpert, ReachExpert, evaluate
+from lynxsim.envs import PickAndPlaceExpert, Randomization, ReachExpert, evaluate
 from lynxsim.envs.evaluation import run_episode
 from lynxsim.errors import InvalidInputError
 
@@ -85,6 +85,22 @@ def test_closed_loop_expert_recovers_from_perturbed_actions():
         seed=3000,
         action_noise=0.05,
         env_kwargs={"random_obstacles": (1, 3)},
+    )
+    assert summary.success_rate >= 0.9, [e for e in summary.episodes if not e.success]
+    assert summary.collision_episodes == 0
+
+
+@pytest.mark.slow
+def test_expert_grasps_cubes_of_randomised_size_mass_and_friction():
+    randomize = Randomization(
+        cube_size_m=(0.018, 0.028), cube_mass_kg=(0.005, 0.05), cube_friction=(0.6, 1.5)
+    )
+    summary = evaluate(
+        "LynxPickAndPlace-v1",
+        "expert",
+        EXPERT_EPISODES,
+        seed=0,
+        env_kwargs={"randomize": randomize},
     )
     assert summary.success_rate >= 0.9, [e for e in summary.episodes if not e.success]
     assert summary.collision_episodes == 0
