@@ -18,6 +18,7 @@ import argparse
 import platform
 import time
 from collections.abc import Callable
+from typing import Any
 
 import gymnasium as gym
 
@@ -39,6 +40,21 @@ PIXEL_SIZES = (None, 84, 128)
 def best_of(fn: Callable[[], float], repeats: int = REPEATS) -> float:
     """Smallest of ``repeats`` timings returned by ``fn`` [s]."""
     return min(fn() for _ in range(repeats))
+
+
+def rollout_time(env: gym.Env[Any, Any], steps: int, repeats: int = REPEATS) -> float:
+    """Best time per step of ``steps`` seeded random actions from ``reset(seed=0)`` [s]."""
+    env.action_space.seed(0)
+    actions = [env.action_space.sample() for _ in range(steps)]
+
+    def run() -> float:
+        env.reset(seed=0)
+        start = time.perf_counter()
+        for a in actions:
+            env.step(a)
+        return time.perf_counter() - start
+
+    return best_of(run, repeats) / steps
 
 
 def step_vs_physics(env_id: str, control: str, steps: int) -> tuple[float, float]:
@@ -78,17 +94,7 @@ def step_vs_physics(env_id: str, control: str, steps: int) -> tuple[float, float
 def wrapped_step_time(env_id: str, control: str, steps: int) -> float:
     """Best time per step of the same rollout through ``gym.make``'s wrappers [s]."""
     env = gym.make(env_id, control=control, max_episode_steps=steps + 1)
-    env.action_space.seed(0)
-    actions = [env.action_space.sample() for _ in range(steps)]
-
-    def run() -> float:
-        env.reset(seed=0)
-        start = time.perf_counter()
-        for a in actions:
-            env.step(a)
-        return time.perf_counter() - start
-
-    t = best_of(run) / steps
+    t = rollout_time(env, steps)
     env.close()
     return t
 
@@ -116,17 +122,7 @@ def pixel_steps_per_s(side: int | None, steps: int) -> float:
     """
     pixels = {} if side is None else {"pixels": ("front",), "pixel_width": side}
     env = gym.make(PICK_AND_PLACE_ID, **pixels, pixel_height=side or 84).unwrapped
-    env.action_space.seed(0)
-    actions = [env.action_space.sample() for _ in range(steps)]
-
-    def run() -> float:
-        env.reset(seed=0)
-        start = time.perf_counter()
-        for a in actions:
-            env.step(a)
-        return time.perf_counter() - start
-
-    t = best_of(run, 3) / steps
+    t = rollout_time(env, steps, 3)
     env.close()
     return 1.0 / t
 
