@@ -54,6 +54,8 @@ def _run(args: argparse.Namespace) -> int:
             seed=args.seed,
             format=args.format,
             dataset_id=args.dataset_id,
+            images=("front",) if args.images else (),
+            image_size=args.image_size,
             on_episode=on_episode,
         )
     finally:
@@ -125,6 +127,18 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default=None,
         help="Minari-style id, also the folder under DIR "
         "(default lynxsim/<env>/expert-v0, e.g. lynxsim/pick-and-place-v1/expert-v0)",
+    )
+    p.add_argument(
+        "--images",
+        action="store_true",
+        help="add the front camera's images to the observations (observations/pixels, uint8)",
+    )
+    p.add_argument(
+        "--image-size",
+        type=bounded_int(16, 512),
+        default=84,
+        metavar="PX",
+        help="side of the images with --images, 16 to 512 px (default 84)",
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_run)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import importlib.metadata
 import json
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass
 from pathlib import Path
@@ -86,6 +86,8 @@ def write_dataset(
     seed: int = 0,
     format: DatasetFormat | Literal["npz", "minari"] = DatasetFormat.NPZ,
     dataset_id: str | None = None,
+    images: Sequence[str] = (),
+    image_size: int = 84,
     on_episode: Callable[[Episode], None] | None = None,
 ) -> DatasetSummary:
     """Record ``episodes`` episodes of the env's scripted expert into ``out / dataset_id``.
@@ -111,6 +113,10 @@ def write_dataset(
         format: ``"npz"`` or ``"minari"``.
         dataset_id: Minari-style id, also the dataset's path under ``out``
             (default :func:`default_dataset_id`).
+        images: Cameras whose images the observations carry (the env's
+            ``pixels`` option: an ``observations/pixels`` entry, uint8
+            (T + 1, size, size, 3 x cameras)); empty: none.
+        image_size: Side of the images [px], 16 to 512.
         on_episode: Called with each episode once recorded.
 
     Returns:
@@ -142,8 +148,14 @@ def write_dataset(
     dest = check_new_folder(dataset_folder(out, dataset_id))
     if fmt is DatasetFormat.MINARI:
         require_minari()  # before any work
-    spec = gym.spec(env_id)
-    env = gym.make(spec)
+    if isinstance(images, str):
+        images = (images,)
+    image_size = check_count(image_size, "image_size", 16, 512)
+    pixels: dict[str, Any] = {}
+    if images:
+        pixels = {"pixels": tuple(images), "pixel_width": image_size, "pixel_height": image_size}
+    env = gym.make(env_id, **pixels)
+    spec = env.spec if env.spec is not None else gym.spec(env_id)
     try:
         std = action_noise_std(env.action_space, noise)
         policy = make_policy("expert", env)
