@@ -43,7 +43,7 @@ from lynxsim.envs.control import (
     TargetStatus,
     ToolSpaceController,
 )
-from lynxsim.envs.randomization import Domain, Randomization
+from lynxsim.envs.randomization import Domain, ModelRandomizer, Randomization
 from lynxsim.envs.rendering import RENDER_MODES, EnvRenderer, PixelRenderer
 from lynxsim.envs.reward import RewardType, collision_flags, goal_distance, goal_reward
 from lynxsim.envs.workspace import (
@@ -345,9 +345,9 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._pixels = PixelRenderer(self.model, pixel_settings) if pixel_settings else None
         self._resolve_ids()
         self.randomize = self._check_randomization(randomize, "randomize")
-        self._nominal = self._model_fields()
-        self._randomized = False
-        self._domain = self._current_domain()
+        self._randomizer = ModelRandomizer(
+            self.model, self.data, self._arm_act, self._arm_dof, self.ids.cube_geom, REPORT_CUBE
+        )
 
         if self.control is ControlMode.TOOL:
             self._controller: ToolSpaceController | JointSpaceController = ToolSpaceController(
@@ -406,45 +406,6 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         self._has_obstacle = bool(len(groups.obstacle_geoms))
         self._goal_mark = m.site(_GOAL_MARK_SITE).id
 
-    def _model_fields(self) -> list[FloatArray]:
-        """Copies of the model fields that randomisation writes (the cube's: empty without one)."""
-        m, ids = self.model, self.ids
-        fields = [
-            m.actuator_gainprm[self._arm_act, 0].copy(),
-            m.actuator_biasprm[self._arm_act, 1].copy(),
-            m.dof_damping[self._arm_dof].copy(),
-            m.cam_pos.copy(),
-            m.cam_quat.copy(),
-        ]
-        if ids.cube_geom is not None:
-            g, b = ids.cube_geom, int(m.geom_bodyid[ids.cube_geom])
-            fields += [
-                m.geom_size[g].copy(),
-                m.geom_aabb[g].copy(),
-                m.geom_rbound[g : g + 1].copy(),
-                m.geom_friction[g].copy(),
-                m.body_mass[b : b + 1].copy(),
-                m.body_inertia[b].copy(),
-            ]
-        return fields
-
-    def _write_model_fields(self, fields: list[FloatArray]) -> None:
-        """Write what :meth:`_model_fields` read."""
-        m, ids = self.model, self.ids
-        m.actuator_gainprm[self._arm_act, 0] = fields[0]
-        m.actuator_biasprm[self._arm_act, 1] = fields[1]
-        m.dof_damping[self._arm_dof] = fields[2]
-        m.cam_pos[:] = fields[3]
-        m.cam_quat[:] = fields[4]
-        if ids.cube_geom is not None:
-            g, b = ids.cube_geom, int(m.geom_bodyid[ids.cube_geom])
-            m.geom_size[g] = fields[5]
-            m.geom_aabb[g] = fields[6]
-            m.geom_rbound[g] = fields[7][0]
-            m.geom_friction[g] = fields[8]
-            m.body_mass[b] = fields[9][0]
-            m.body_inertia[b] = fields[10]
-
     def _check_randomization(self, value: object, name: str) -> Randomization | None:
         """``value`` if None or a :class:`Randomization` this env can apply, else raise."""
         if value is None:
@@ -461,82 +422,15 @@ class LynxArmEnv(gym.Env[Obs, npt.NDArray[np.float32]]):
         return value
 
     def _randomize_model(self, r: Randomization | None) -> None:
-        """Draw the episode's physical parameters from ``np_random`` into the model.
-
-        Starts from the nominal model; ``r`` None restores it (and touches nothing
-        when nothing was randomised). Runs ``mj_setConst`` (which uses ``data`` as
-        scratch: call before ``mj_resetData``), so the constants that depend on
-        masses (``body_subtreemass``, ``*_invweight0``, ``dof_M0``, ``actuator_acc0``)
-        follow the cube.
-        """
-        if r is None and not self._randomized:
-            return
-        m, g = self.model, self.ids.cube_geom
-        self._write_model_fields(self._nominal)
-        cube = REPORT_CUBE
-        if r is not None:
-            rng = self.np_random
-            if r.touches_cube and g is not None:
-                size, mass, friction = (
-                    default if span is None else float(rng.uniform(*span))
-                    for span, default in (
-                        (r.cube_size_m, cube.size),
-                        (r.cube_mass_kg, cube.mass),
-                        (r.cube_friction, cube.friction),
-                    )
-                )
-                cube = replace(cube, size=size, mass=mass, friction=friction)
-                b = int(m.geom_bodyid[g])
-                half = 0.5 * size
-                m.geom_size[g] = half
-                m.geom_aabb[g, 3:] = half
-                m.geom_rbound[g] = math.sqrt(3.0) * half
-                m.geom_friction[g, 0] = friction
-                m.body_mass[b] = mass
-                m.body_inertia[b] = mass * size * size / 6.0  # a solid cube
-            n = len(self._arm_dof)
-            if r.servo_gain_tolerance:
-                t = r.servo_gain_tolerance
-                kp = self._nominal[0] * rng.uniform(1.0 - t, 1.0 + t, n)
-                m.actuator_gainprm[self._arm_act, 0] = kp
-                m.actuator_biasprm[self._arm_act, 1] = -kp
-            if r.joint_damping_tolerance:
-                t = r.joint_damping_tolerance
-                m.dof_damping[self._arm_dof] = self._nominal[2] * rng.uniform(1.0 - t, 1.0 + t, n)
-            if r.camera_shift_m:
-                shift = r.camera_shift_m
-                m.cam_pos[:] = self._nominal[3] + rng.uniform(-shift, shift, (m.ncam, 3))
-            if r.camera_tilt_rad:
-                axes = rng.standard_normal((m.ncam, 3))
-                angles = rng.uniform(0.0, r.camera_tilt_rad, m.ncam)
-                turn, quat = np.zeros(4), np.zeros(4)
-                for i in range(m.ncam):
-                    mujoco.mju_axisAngle2Quat(turn, axes[i] / np.linalg.norm(axes[i]), angles[i])
-                    mujoco.mju_mulQuat(quat, self._nominal[4][i], turn)
-                    m.cam_quat[i] = quat / np.linalg.norm(quat)
-        mujoco.mj_setConst(m, self.data)
-        self._randomized = r is not None
-        self._domain = self._current_domain()
+        """Draw the episode's physical parameters into the model (None: the nominal ones)."""
+        cube = self._randomizer.apply(r, self.np_random)
         if self._cube_spec is not None:
             self._cube_spec = cube
-
-    def _current_domain(self) -> Domain:
-        """The model's physical parameters now, as a :class:`Domain`."""
-        m, g = self.model, self.ids.cube_geom
-        return Domain(
-            cube_size_m=None if g is None else 2.0 * float(m.geom_size[g, 0]),
-            cube_mass_kg=None if g is None else float(m.body_mass[m.geom_bodyid[g]]),
-            cube_friction=None if g is None else float(m.geom_friction[g, 0]),
-            servo_kp=tuple(m.actuator_gainprm[self._arm_act, 0].tolist()),
-            joint_damping=tuple(m.dof_damping[self._arm_dof].tolist()),
-            camera_pos=tuple(map(tuple, m.cam_pos.tolist())),
-            camera_quat=tuple(map(tuple, m.cam_quat.tolist())),
-        )
 
     @property
     def domain(self) -> Domain:
         """The episode's physical parameters: drawn at reset with randomisation, else nominal."""
-        return self._domain
+        return self._randomizer.domain
 
     @property
     def obstacles(self) -> tuple[Obstacle, ...]:

@@ -30,7 +30,14 @@ from lynxsim.errors import InvalidInputError
 from lynxsim.scene import Box, Cylinder, Obstacle, Sphere
 from lynxsim.sim.arm.model import OBSTACLE_CLASS, obstacle_geom
 
-__all__ = ["PARK_POSITION_M", "SLOT_SHAPES", "ObstacleSlots", "add_obstacle_slots", "slot_name"]
+__all__ = [
+    "PARK_POSITION_M",
+    "SLOT_SHAPES",
+    "ObstacleSlots",
+    "add_obstacle_slots",
+    "primitive_bounds",
+    "slot_name",
+]
 
 SLOT_SHAPES: tuple[type[Obstacle], ...] = (Cylinder, Box, Sphere)
 """The shapes a slot can hold, in the order slots are added."""
@@ -79,7 +86,7 @@ def add_obstacle_slots(spec: mujoco.MjSpec, per_shape: int) -> None:
             )
 
 
-def _bounds(geom_type: int, size: tuple[float, float, float]) -> tuple[list[float], float]:
+def primitive_bounds(geom_type: int, size: tuple[float, float, float]) -> tuple[list[float], float]:
     """Local bounding-box half extents and bounding radius of a primitive, as MuJoCo's."""
     a, b, c = size
     if geom_type == int(mujoco.mjtGeom.mjGEOM_SPHERE):
@@ -154,7 +161,7 @@ class ObstacleSlots:
             g = slots[used[shape]]
             used[shape] += 1
             geom = obstacle_geom(obstacle)
-            half, radius = _bounds(geom.type, geom.size)
+            half, radius = primitive_bounds(geom.type, geom.size)
             m.geom_size[g] = geom.size
             m.geom_pos[g] = geom.pos
             m.geom_quat[g] = geom.quat
