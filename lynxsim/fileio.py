@@ -5,7 +5,8 @@ Names that come from files (a task's ``name``) never choose where output goes:
 places that stem inside the folder the user gave. :func:`atomic_path` writes
 beside the destination and renames only after the writer succeeded; it never
 replaces anything that is not a regular file (a folder, a FIFO, a device, a
-symbolic link).
+symbolic link). :func:`atomic_folder` does the same for a folder written whole
+(a dataset): a hidden temporary folder, renamed only when complete.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import contextlib
 import json
 import os
 import re
+import shutil
 import stat
 import tempfile
 import unicodedata
@@ -25,8 +27,10 @@ from lynxsim.errors import OutputPathError
 
 __all__ = [
     "MAX_STEM",
+    "atomic_folder",
     "atomic_path",
     "check_destination",
+    "check_new_folder",
     "file_stem",
     "output_path",
     "safe_stem",
@@ -143,3 +147,47 @@ def write_json(dest: str | os.PathLike[str], data: Any) -> Path:
     with atomic_path(dest) as tmp:
         tmp.write_text(json.dumps(data, indent=2) + "\n")
     return Path(dest)
+
+
+def check_new_folder(dest: str | os.PathLike[str], hint: str = "remove it") -> Path:
+    """Refuse a destination that exists (of any kind), or whose parent cannot be a folder.
+
+    Args:
+        dest: The folder to create.
+        hint: What the error suggests doing instead.
+
+    Raises:
+        OutputPathError: ``dest`` exists, or a part of its path is not a folder.
+    """
+    dest = Path(dest)
+    if os.path.lexists(dest):
+        raise OutputPathError(f"will not replace {dest}: it exists ({hint})")
+    return check_destination(dest)
+
+
+@contextlib.contextmanager
+def atomic_folder(dest: str | os.PathLike[str], hint: str = "remove it") -> Iterator[Path]:
+    """Yield a new temporary folder beside ``dest``; rename it to ``dest`` on success.
+
+    On any exception (``KeyboardInterrupt`` and the CLI's SIGTERM included) the
+    temporary folder and everything in it are removed, and ``dest`` never appears.
+
+    Raises:
+        OutputPathError: ``dest`` exists (checked before and again just before
+            the rename), or a part of its path is not a folder.
+    """
+    dest = check_new_folder(dest, hint)
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
+    try:
+        yield tmp
+        # mkdtemp creates the folder private (0700); give it the usual permissions.
+        umask = os.umask(0)
+        os.umask(umask)
+        tmp.chmod(0o777 & ~umask)
+        # dest may have appeared while we wrote, and a rename replaces an empty folder.
+        check_new_folder(dest, hint)
+        os.rename(tmp, dest)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise

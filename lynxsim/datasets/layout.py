@@ -2,32 +2,25 @@
 
 A dataset id is Minari's ``namespace/name-vN`` (e.g. ``lynxsim/pick-and-place-v1/expert-v0``)
 and doubles as the dataset's path inside the root folder, for both formats; a
-Minari root is what ``MINARI_DATASETS_PATH`` points to. :func:`atomic_folder`
-writes into a hidden temporary folder beside the destination and renames it only
-when the writer has finished and checked its output: a killed run leaves no
-folder under the dataset's name (only, after ``kill -9``, a hidden ``.NAME.*.tmp``).
+Minari root is what ``MINARI_DATASETS_PATH`` points to. Datasets are written with
+:func:`lynxsim.fileio.atomic_folder`: a killed run leaves no folder under the
+dataset's name (only, after ``kill -9``, a hidden ``.NAME.*.tmp``).
 """
 
 from __future__ import annotations
 
-import contextlib
 import enum
 import os
 import re
-import shutil
-import tempfile
-from collections.abc import Iterator
 from pathlib import Path
 
-from lynxsim.errors import InvalidInputError, OutputPathError, short
-from lynxsim.fileio import check_destination
+from lynxsim.errors import InvalidInputError, short
 
 __all__ = [
     "MAX_ID_LENGTH",
+    "NEW_FOLDER_HINT",
     "DatasetFormat",
-    "atomic_folder",
     "check_dataset_id",
-    "check_new_folder",
     "dataset_folder",
     "default_dataset_id",
 ]
@@ -86,43 +79,5 @@ def dataset_folder(root: str | os.PathLike[str], dataset_id: str) -> Path:
     return Path(root) / check_dataset_id(dataset_id)
 
 
-def check_new_folder(dest: str | os.PathLike[str]) -> Path:
-    """Refuse a destination that exists (of any kind), or whose parent cannot be a folder.
-
-    Raises:
-        OutputPathError: ``dest`` exists, or a part of its path is not a folder.
-    """
-    dest = Path(dest)
-    if os.path.lexists(dest):
-        raise OutputPathError(
-            f"will not replace {dest}: it exists (remove it, or choose another root or dataset id)"
-        )
-    return check_destination(dest)
-
-
-@contextlib.contextmanager
-def atomic_folder(dest: str | os.PathLike[str]) -> Iterator[Path]:
-    """Yield a new temporary folder beside ``dest``; rename it to ``dest`` on success.
-
-    On any exception (``KeyboardInterrupt`` and the CLI's SIGTERM included) the
-    temporary folder and everything in it are removed, and ``dest`` never appears.
-
-    Raises:
-        OutputPathError: ``dest`` exists (checked before and again just before
-            the rename), or a part of its path is not a folder.
-    """
-    dest = check_new_folder(dest)
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
-    try:
-        yield tmp
-        # mkdtemp creates the folder private (0700); give it the usual permissions.
-        umask = os.umask(0)
-        os.umask(umask)
-        tmp.chmod(0o777 & ~umask)
-        # dest may have appeared while we wrote, and a rename replaces an empty folder.
-        check_new_folder(dest)
-        os.rename(tmp, dest)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
+NEW_FOLDER_HINT = "remove it, or choose another root or dataset id"
+"""What an existing dataset folder's error suggests."""

@@ -69,7 +69,7 @@ class MinariWriter:
 
     Args:
         folder: An existing, empty folder (the temporary one of
-            :func:`~lynxsim.datasets.layout.atomic_folder`).
+            :func:`~lynxsim.fileio.atomic_folder`).
         env: The env the episodes come from (made by ``gym.make``: its spec is
             stored, for ``recover_environment()``).
         dataset_id: The dataset's Minari id.

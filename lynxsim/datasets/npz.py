@@ -66,7 +66,7 @@ class NpzWriter:
 
     Args:
         folder: An existing, empty folder (the temporary one of
-            :func:`~lynxsim.datasets.layout.atomic_folder`).
+            :func:`~lynxsim.fileio.atomic_folder`).
     """
 
     def __init__(self, folder: Path) -> None:

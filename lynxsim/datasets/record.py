@@ -20,9 +20,8 @@ import lynxsim
 from lynxsim.bounds import MAX_EPISODES, check_count
 from lynxsim.datasets.episode import INFO_KEYS, Episode, record_episode
 from lynxsim.datasets.layout import (
+    NEW_FOLDER_HINT,
     DatasetFormat,
-    atomic_folder,
-    check_new_folder,
     dataset_folder,
     default_dataset_id,
 )
@@ -32,6 +31,7 @@ from lynxsim.envs.evaluation import make_policy
 from lynxsim.envs.noise import action_noise_std, check_noise, noise_generator
 from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
 from lynxsim.errors import InvalidInputError, InvalidTypeError, short
+from lynxsim.fileio import atomic_folder, check_new_folder
 
 __all__ = ["MAX_SEED", "DatasetSummary", "write_dataset"]
 
@@ -145,7 +145,7 @@ def write_dataset(
         raise InvalidInputError(f"format must be one of {choices}, got {short(format)}") from None
     noise = check_noise(noise)
     dataset_id = default_dataset_id(env_id) if dataset_id is None else dataset_id
-    dest = check_new_folder(dataset_folder(out, dataset_id))
+    dest = check_new_folder(dataset_folder(out, dataset_id), NEW_FOLDER_HINT)
     if fmt is DatasetFormat.MINARI:
         require_minari()  # before any work
     if isinstance(images, str):
@@ -165,7 +165,10 @@ def write_dataset(
             f"range on every step; episode i reset with seed {seed} + i."
         )
         steps = successes = collisions = 0
-        with atomic_folder(dest) as tmp, _writer(fmt, tmp, env, dataset_id, description) as w:
+        with (
+            atomic_folder(dest, NEW_FOLDER_HINT) as tmp,
+            _writer(fmt, tmp, env, dataset_id, description) as w,
+        ):
             for i in range(episodes):
                 episode = record_episode(env, policy, seed + i, std, noise_generator(seed + i))
                 w.add(episode)
