@@ -129,8 +129,9 @@ def count_range(low: int, high: int) -> Callable[[str], tuple[int, int]]:
     one = bounded_int(low, high)
 
     def parse(text: str) -> tuple[int, int]:
-        first, dash, last = text.partition("-")
-        fewest = one(first)
+        # A leading sign belongs to the first number (a negative count is out of range).
+        head, dash, last = text[1:].partition("-")
+        fewest = one(text[:1] + head)
         most = one(last) if dash else fewest
         if most < fewest:
             raise argparse.ArgumentTypeError(f"must be N or LO-HI with LO <= HI, got {text[:40]}")

@@ -69,6 +69,7 @@ def test_env_command_with_random_obstacles_and_action_noise(capsys):
         (["--action-noise", "1.5"], "argument --action-noise: must be between 0 and 1, got 1.5"),
         (["--action-noise", "nan"], "argument --action-noise"),
         (["--random-obstacles", "5"], "argument --random-obstacles: must be between 0 and 4"),
+        (["--random-obstacles=-1"], "argument --random-obstacles: must be between 0 and 4, got -1"),
         (["--random-obstacles", "3-1"], "must be N or LO-HI with LO <= HI, got 3-1"),
         (["--random-obstacles", "1-"], "argument --random-obstacles: must be an integer"),
         (["--random-obstacles", "2", "--no-obstacle"], "not allowed with argument"),
