@@ -85,8 +85,17 @@ given up at once."""
 _GRASP_ABOVE_M = 0.003
 """Tool height above the cube's centre at the grasp [m]: the pads cover its faces, the
 palm stays off its top."""
-_CENTRED_M = 0.004
-"""The command counts as centred over the cube within this [m] (the tool within twice)."""
+_CENTRED_ACROSS_M = 0.0015
+"""The plunge starts when the tool point is this close to the cube's centre along the
+fingers' closing axis [m] (a 30 mm opening leaves 2.5 mm each side of a 25 mm cube) ..."""
+_CENTRED_ALONG_M = 0.005
+"""... and this close along the pads' width (18 mm wide pads) [m]."""
+_PRESS_M = 0.006
+"""A plunging command goes at most this far below the tool point [m]: a finger that
+lands on the cube presses it no harder (hard presses tip it over)."""
+_SNAP_M = 0.005
+"""Short moves correct an error up to this [m] in one step, braking or not: noisy
+actions push the command a few millimetres every step."""
 _PRE_GRASP_WAIT = 20
 """Steps the centring may take before the expert plunges anyway."""
 _PLUNGE_STEPS = 6
@@ -180,8 +189,29 @@ def _braking(distance: float, speed: float = 1.0) -> float:
 def _straight(
     cmd: Pose, dest: Pose, controller: ToolSpaceController, speed: float = 1.0
 ) -> tuple[list[float], bool]:
-    """:func:`_toward` with braking: for the short straight moves at the cube and the goal."""
-    return _toward(cmd, dest, controller, _braking(math.dist(cmd[:3], dest[:3]), speed))
+    """:func:`_toward` with braking: for the short straight moves at the cube and the goal.
+
+    The last :data:`_SNAP_M` are taken in one step.
+    """
+    distance = math.dist(cmd[:3], dest[:3])
+    snap = min(distance, _SNAP_M) / controller.position_step
+    return _toward(cmd, dest, controller, max(_braking(distance, speed), snap))
+
+
+def _per_axis(cmd: Pose, dest: Pose, controller: ToolSpaceController) -> list[float]:
+    """Arm action (4 values) towards ``dest``, each axis as far as one step allows."""
+    steps = (*(controller.position_step,) * 3, controller.pitch_step)
+    return [max(-1.0, min(1.0, (dest[i] - cmd[i]) / steps[i])) for i in range(4)]
+
+
+def _across_along(dx: float, dy: float, azimuth: float) -> tuple[float, float]:
+    """A horizontal offset (dx, dy) [m] along the fingers' closing axis and across it.
+
+    The gripper, pointing down, closes along the arm's vertical plane (azimuth
+    ``azimuth`` [rad], the base joint's angle).
+    """
+    c, s = math.cos(azimuth), math.sin(azimuth)
+    return dx * c + dy * s, dy * c - dx * s
 
 
 class _Route:
@@ -290,7 +320,9 @@ class _Planner:
         """
         ends = np.array([start, goal], dtype=float)
         for sub in self._spaces:
-            p = sub.space.project(ends)
+            # Into the joint box: the controller's commands may stand a rounding error
+            # beyond a limit (a pitch clipped to -pi/2 leaves the wrist 4e-8 rad past it).
+            p = np.clip(sub.space.project(ends), sub.lower, sub.upper)
             miss = np.abs(sub.space.full(p) - ends).max(axis=1)
             if miss[0] > _SNAP_RAD or miss[1] > _FOLLOW_TOL_RAD:
                 continue  # start or goal outside this subspace (a start near it snaps to it)
@@ -495,19 +527,23 @@ class PickAndPlaceExpert:
             # Above the cube, fingertips clear of its top, until centred over it.
             point = (cube[0], cube[1], cube[2] + self._align)
             arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), c, _SLOW)
+            across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], float(q_cmd[0]))
             centred = (
-                math.dist(cmd[:2], cube[:2]) < _CENTRED_M
-                and math.dist(tool[:2], cube[:2]) < 2 * _CENTRED_M
+                abs(across) < _CENTRED_ACROSS_M
+                and abs(along) < _CENTRED_ALONG_M
                 and abs(tool[2] - point[2]) < _AROUND_M
             )
             if centred or (at and self._count > _PRE_GRASP_WAIT):
+                # Down at once: one more step of noisy actions would undo the centring.
                 self._enter(_Phase.PLUNGE)
-        elif phase is _Phase.PLUNGE:
+                phase = _Phase.PLUNGE
+        if phase is _Phase.PLUNGE:
             # Down past the cube's top in as few steps as possible, then close. Heights
             # count from the resting centre: a cube pressed into the table reads lower.
             base = max(cube[2], self._rest_z)
             point = (cube[0], cube[1], max(base + _GRASP_ABOVE_M, c.box[0][2]))
-            arm, _ = _toward(cmd, (*point, _pitch_for(point, q_cmd)), c, 1.0)
+            dive = (*point[:2], max(point[2], tool[2] - _PRESS_M))
+            arm = _per_axis(cmd, (*dive, _pitch_for(point, q_cmd)), c)
             around = (
                 math.dist(tool[:2], cube[:2]) < _AROUND_M
                 and tool[2] - base < _GRASP_ABOVE_M + _AROUND_M
@@ -517,7 +553,7 @@ class PickAndPlaceExpert:
                 self._hold_at = point_pose = (cmd[0], cmd[1], point[2], TOP_DOWN_PITCH_RAD)
                 arm, _ = _straight(cmd, point_pose, c, _SLOW)
             elif self._count > _PLUNGE_STEPS or (
-                self._count >= 2 and tool[2] - base > self._on_top
+                self._count >= 1 and tool[2] - base > self._on_top
             ):  # landed on the cube or beside it: up and again
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.GRASP:  # close, holding the arm where the grasp began
@@ -551,7 +587,7 @@ class PickAndPlaceExpert:
             opened = opening > self._opened
             if self._count >= _RELEASE_STEPS and (opened or self._count > _MAX_WAIT_STEPS):
                 self._enter(_Phase.RETREAT)
-        else:  # RETREAT straight up (a jerk upwards drags the cube along the fingers)
+        elif phase is _Phase.RETREAT:  # straight up (a jerk up drags the cube along the fingers)
             arm, _ = _straight(cmd, (cmd[0], cmd[1], goal[2] + _HOVER_M, cmd[3]), c, _SLOW)
             if math.dist(cube, goal) > _KNOCKED * self._threshold:  # knocked off: again
                 self._enter(_Phase.APPROACH)

@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import math
+
 import gymnasium as gym
 import numpy as np
 import pytest
 
+from lynxsim.arm import LYNX_ARM, ik_nearest
 from lynxsim.envs import PickAndPlaceExpert, Randomization, ReachExpert, evaluate
 from lynxsim.envs.evaluation import run_episode
+from lynxsim.envs.expert import _Planner
+from lynxsim.envs.workspace import CARRY_HEIGHT_M, TOP_DOWN_PITCH_RAD
 from lynxsim.errors import InvalidInputError
 
 EXPERT_EPISODES = 20
@@ -104,3 +109,21 @@ def test_expert_grasps_cubes_of_randomised_size_mass_and_friction():
     )
     assert summary.success_rate >= 0.9, [e for e in summary.episodes if not e.success]
     assert summary.collision_episodes == 0
+
+
+def test_expert_plans_from_a_command_a_rounding_error_past_a_joint_limit():
+    # Seed 100 with action noise 0.1 once stopped the expert with an InvalidInputError:
+    # a tool pitch clipped to -pi/2 left the commanded wrist 3.6e-8 rad below its
+    # lower limit, and the planner refused that start as outside the joint box.
+    env = gym.make("LynxPickAndPlace-v1")
+    env.reset(seed=100)
+    u = env.unwrapped
+    start = (1.5297280286926855, 0.7392911065009873, -0.7392910707371163,
+             -1.5707963625587675, math.pi)  # fmt: skip
+    assert start[3] < LYNX_ARM.q_min[3]
+    status, goal = ik_nearest(0.149, -0.145, CARRY_HEIGHT_M, TOP_DOWN_PITCH_RAD, math.pi, start)
+    assert status == 0
+    assert goal is not None
+    route = _Planner(u, u.controller).route(start, tuple(goal), grasped=True)
+    assert route is not None
+    assert math.dist(route.end[:3], (0.149, -0.145, CARRY_HEIGHT_M)) < 1e-6
