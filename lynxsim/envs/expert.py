@@ -122,9 +122,12 @@ _RELEASE_STEPS = 3
 """... until the fingers stand 2.5 mm wider than the cube."""
 _REOPEN_STEPS = 5
 """Steps the gripper gets to open after a missed grasp."""
-_KNOCKED = 0.8
+_KNOCKED = 1.0
 """A placed cube farther from the goal than this share of the success radius is
-picked up again."""
+picked up again (one still within it is left alone: picking it up again would
+risk more than it can win)."""
+_ON_GOAL_M = 0.006
+"""A cube put down this close to the goal horizontally [m] is let go at once."""
 _DOWN_M = 0.004
 """A cube within this of its resting height [m] may be let go."""
 _PLACE_ABOVE_M = 0.002
@@ -570,7 +573,8 @@ class PickAndPlaceExpert:
             if self._count >= _REOPEN_STEPS:
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.LIFT:
-            arm, at = _straight(cmd, (cmd[0], cmd[1], CARRY_HEIGHT_M, cmd[3]), c)
+            # Straight up from where the grasp began (noisy actions must not walk it off).
+            arm, at = _straight(cmd, (*self._hold_at[:2], CARRY_HEIGHT_M, cmd[3]), c)
             grip = -1.0
             if at and (settled or near or self._count > _MAX_WAIT_STEPS):
                 if in_hand:
@@ -588,7 +592,8 @@ class PickAndPlaceExpert:
             if self._count >= _RELEASE_STEPS and (opened or self._count > _MAX_WAIT_STEPS):
                 self._enter(_Phase.RETREAT)
         elif phase is _Phase.RETREAT:  # straight up (a jerk up drags the cube along the fingers)
-            arm, _ = _straight(cmd, (cmd[0], cmd[1], goal[2] + _HOVER_M, cmd[3]), c, _SLOW)
+            above = (*self._hold_at[:2], goal[2] + _HOVER_M, cmd[3])  # where it was let go
+            arm, _ = _straight(cmd, above, c, _SLOW)
             if math.dist(cube, goal) > _KNOCKED * self._threshold:  # knocked off: again
                 self._enter(_Phase.APPROACH)
         return np.array([*arm, grip], dtype=np.float32)
@@ -615,11 +620,19 @@ class PickAndPlaceExpert:
             if at:
                 self._enter(_Phase.PLACE if on_table else _Phase.HOLD)
             return arm, -1.0
+        # At the goal, the cube itself is steered: where it sits in the hand now.
+        off = (cube[0] - tool[0], cube[1] - tool[1], cube[2] - tool[2])
+        over = (goal[0] - off[0], goal[1] - off[1])
         if phase is _Phase.PLACE:
             point = (*over, goal[2] + _PLACE_ABOVE_M - off[2])
             arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), self._controller, _SLOW)
             down = cube[2] - goal[2] < _DOWN_M  # the cube (almost) rests on the table
-            if at and (settled or down or self._count > _MAX_WAIT_STEPS):
+            on_goal = math.dist(cube[:2], goal[:2]) < _ON_GOAL_M
+            if (
+                (at or on_goal)
+                and (down or self._count > _MAX_WAIT_STEPS)
+                and (on_goal or self._count > 2 * _MAX_WAIT_STEPS)
+            ):
                 self._enter(_Phase.RELEASE)
                 self._hold_at = cmd
                 return [0.0, 0.0, 0.0, 0.0], 1.0
