@@ -13,6 +13,9 @@ from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
 
 __all__ = ["register"]
 
+RANDOMIZED_OBSTACLES = (1, 3)
+"""Obstacles per episode of ``--randomize-obstacles`` (the experts' acceptance scenes)."""
+
 
 def _run(args: argparse.Namespace) -> int:
     from tqdm import tqdm
@@ -100,6 +103,13 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         metavar="N|LO-HI",
         help="instead of the cylinder, N (or LO to HI) random obstacles drawn at every reset "
         f"(at most {MAX_RANDOM_OBSTACLES})",
+    )
+    scene.add_argument(
+        "--randomize-obstacles",
+        action="store_const",
+        const=RANDOMIZED_OBSTACLES,
+        dest="random_obstacles",
+        help=f"the same as --random-obstacles {RANDOMIZED_OBSTACLES[0]}-{RANDOMIZED_OBSTACLES[1]}",
     )
     p.add_argument(
         "--action-noise",

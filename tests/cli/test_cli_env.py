@@ -63,6 +63,15 @@ def test_env_command_with_random_obstacles_and_action_noise(capsys):
     assert "collisions       0 episodes" in out
 
 
+def test_randomize_obstacles_is_one_to_three_random_obstacles(capsys):
+    argv = ["env", "--episodes", "2", "--seed", "3", "--quiet", "--action-noise", "0.1"]
+    assert main([*argv, "--random-obstacles", "1-3"]) == 0
+    spelled_out = capsys.readouterr().out
+    assert main([*argv, "--randomize-obstacles"]) == 0
+    assert capsys.readouterr().out == spelled_out
+    assert "1-3 random obstacles per episode, action noise 0.1" in spelled_out
+
+
 @pytest.mark.parametrize(
     ("flags", "message"),
     [
@@ -73,6 +82,7 @@ def test_env_command_with_random_obstacles_and_action_noise(capsys):
         (["--random-obstacles", "3-1"], "must be N or LO-HI with LO <= HI, got 3-1"),
         (["--random-obstacles", "1-"], "argument --random-obstacles: must be an integer"),
         (["--random-obstacles", "2", "--no-obstacle"], "not allowed with argument"),
+        (["--randomize-obstacles", "--no-obstacle"], "not allowed with argument"),
     ],
 )
 def test_env_scene_and_noise_flags_refuse_bad_values(capsys, flags, message):
