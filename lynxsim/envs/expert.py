@@ -122,10 +122,6 @@ _RELEASE_STEPS = 3
 """... until the fingers stand 2.5 mm wider than the cube."""
 _REOPEN_STEPS = 5
 """Steps the gripper gets to open after a missed grasp."""
-_KNOCKED = 1.0
-"""A placed cube farther from the goal than this share of the success radius is
-picked up again (one still within it is left alone: picking it up again would
-risk more than it can win)."""
 _ON_GOAL_M = 0.006
 """A cube put down this close to the goal horizontally [m] is let go at once."""
 _DOWN_M = 0.004
@@ -594,7 +590,9 @@ class PickAndPlaceExpert:
         elif phase is _Phase.RETREAT:  # straight up (a jerk up drags the cube along the fingers)
             above = (*self._hold_at[:2], goal[2] + _HOVER_M, cmd[3])  # where it was let go
             arm, _ = _straight(cmd, above, c, _SLOW)
-            if math.dist(cube, goal) > _KNOCKED * self._threshold:  # knocked off: again
+            # Knocked off the goal: again (a cube still within the success radius is
+            # left alone: picking it up again would risk more than it can win).
+            if math.dist(cube, goal) > self._threshold:
                 self._enter(_Phase.APPROACH)
         return np.array([*arm, grip], dtype=np.float32)
 
@@ -609,19 +607,21 @@ class PickAndPlaceExpert:
         settled: bool,
     ) -> tuple[list[float], float]:
         """Carry to the goal, then place (table goal) or hold (goal in the air)."""
-        if settled:  # where the cube sits in the hand, measured at rest
-            self._offset = (cube[0] - tool[0], cube[1] - tool[1], cube[2] - tool[2])
-        off = self._offset
-        on_table = goal[2] <= self._rest_z + 1e-3
-        over = (goal[0] - off[0], goal[1] - off[1])
+        off = (cube[0] - tool[0], cube[1] - tool[1], cube[2] - tool[2])  # the cube in the hand
         if phase is _Phase.CARRY:
-            height = CARRY_HEIGHT_M if on_table else goal[2] - off[2]
-            arm, at = self._transit(cmd, tool, q_cmd, (*over, height), grasped=True)
+            # The planned destination follows the hold measured at rest (a swinging
+            # cube would move it, and re-plan the route, at every step).
+            if settled:
+                self._offset = off
+            on_table = goal[2] <= self._rest_z + 1e-3
+            held = self._offset
+            height = CARRY_HEIGHT_M if on_table else goal[2] - held[2]
+            dest = (goal[0] - held[0], goal[1] - held[1], height)
+            arm, at = self._transit(cmd, tool, q_cmd, dest, grasped=True)
             if at:
                 self._enter(_Phase.PLACE if on_table else _Phase.HOLD)
             return arm, -1.0
-        # At the goal, the cube itself is steered: where it sits in the hand now.
-        off = (cube[0] - tool[0], cube[1] - tool[1], cube[2] - tool[2])
+        # At the goal the cube itself is steered, with the hold as it is now.
         over = (goal[0] - off[0], goal[1] - off[1])
         if phase is _Phase.PLACE:
             point = (*over, goal[2] + _PLACE_ABOVE_M - off[2])
