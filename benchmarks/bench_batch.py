@@ -36,7 +36,7 @@ ROOT = Path(__file__).resolve().parents[1]
 REPEATS = 3
 PARTS = {
     "native stepping (mujoco.batch)": "_step_natively",
-    "posing each state (kinematics + collision, Python)": "pose",
+    "records from the sensors, touching states posed (Python)": "from_sensors",
     "clearances (after the run)": "clearances_of_states",
     "summaries": "summarize",
 }

@@ -4,8 +4,11 @@ Run: ``python benchmarks/bench_playback.py``.
 
 * Playback time per physics step of quintic runs without rendering (contacts,
   clearance to every obstacle and logging every step, the report included),
-  beside the physics alone in the same run: the same commands set and stepped,
-  and ``mj_step`` alone on a fresh data; the ratio of speeds is printed.
+  beside the physics alone in the same run, on the same scene compiled without
+  the recording sensors (:mod:`lynxsim.sim.sensors`): the same controls stepped
+  natively (``mujoco.rollout``, no Python per step: the bare physics), and set
+  and stepped in a Python loop (``data.ctrl`` + ``mj_step``); the ratios of
+  speeds are printed.
 
 Video speed (overlays, encoding, a whole recording) is in ``bench_video.py``.
 """
@@ -20,9 +23,10 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 
 import mujoco
 import numpy as np
+from mujoco import rollout
 
 from lynxsim.arm.task import build_trajectory
-from lynxsim.sim.arm.model import load_arm_scene
+from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
 from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
@@ -34,30 +38,35 @@ PRESETTLE_S = 0.5
 
 
 def _physics_alone(model: mujoco.MjModel, q_cmd: np.ndarray, steps: int) -> tuple[float, float]:
-    """Wall time of the same physics without the playback's records: (commanded, bare) [s].
+    """Wall time of the same physics without the playback's records: (loop, native) [s].
 
-    Commanded: the run's own commands (the hold before it, the trajectory and the
-    settling), set as the playback sets them, then ``mj_step``. Bare: ``mj_step``
-    alone on a fresh data for as many steps (the arm uncommanded).
+    The run's own commands (the hold before it, the trajectory and the
+    settling), from the same rest state. Loop: set as the playback's Python
+    path sets them, then ``mj_step``, step by step. Native: one
+    ``mujoco.rollout`` call over the same controls.
     """
     binding = arm_binding(model)
     data = mujoco.MjData(model)
     data.qpos[binding.qpos_adr] = q_cmd[0]
+    data.ctrl[binding.actuator_ids] = q_cmd[0]
     mujoco.mj_forward(model, data)
+    spec = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    state = np.empty(mujoco.mj_stateSize(model, spec))
+    mujoco.mj_getState(model, data, state, spec)
     hold = round(PRESETTLE_S / model.opt.timestep)
     ctrl = np.concatenate([np.repeat(q_cmd[:1], hold, axis=0), q_cmd])
     ctrl = np.concatenate([ctrl, np.repeat(q_cmd[-1:], hold + steps - len(ctrl), axis=0)])
+    controls = np.repeat(np.array(data.ctrl)[None], len(ctrl), axis=0)
+    controls[:, binding.actuator_ids] = ctrl
     adr = binding.actuator_ids
     start = time.perf_counter()
     for row in ctrl:
         data.ctrl[adr] = row
         mujoco.mj_step(model, data)
-    commanded = time.perf_counter() - start
-    data = mujoco.MjData(model)
+    loop = time.perf_counter() - start
     start = time.perf_counter()
-    for _ in range(len(ctrl)):
-        mujoco.mj_step(model, data)
-    return commanded, time.perf_counter() - start
+    rollout.rollout(model, data, state, controls[None], control_spec=mujoco.mjtState.mjSTATE_CTRL)
+    return loop, time.perf_counter() - start
 
 
 def playback_rtf() -> None:
@@ -69,23 +78,25 @@ def playback_rtf() -> None:
     ):
         task = load_task(ROOT / "tasks" / path)
         trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
-        model = load_arm_scene(task.scene if scene is None else task.scene.without_obstacles())
+        built = task.scene if scene is None else task.scene.without_obstacles()
+        model = load_arm_scene(built)
+        plain = load_arm_spec(built).compile()  # the same scene without the recording sensors
         q_cmd = trajectory.sample(physics_grid(trajectory.duration, model.opt.timestep)).q
-        walls, commanded, bare = [], [], []
+        walls, loops, natives = [], [], []
         for _ in range(REPEATS):
             start = time.perf_counter()
             playback = play_arm(model, trajectory, task=task.name)
             walls.append(time.perf_counter() - start)
-            c, b = _physics_alone(model, q_cmd, playback.log.steps)
-            commanded.append(c)
-            bare.append(b)
+            loop, native = _physics_alone(plain, q_cmd, playback.log.steps)
+            loops.append(loop)
+            natives.append(native)
         steps = playback.log.steps + round(PRESETTLE_S / model.opt.timestep)
-        wall, c, b = min(walls), min(commanded), min(bare)
+        wall, loop, native = min(walls), min(loops), min(natives)
         print(
             f"playback ({label:27s}): {wall / steps * 1e6:5.1f} us/step; physics alone "
-            f"{c / steps * 1e6:5.1f} us/step (commanded), {b / steps * 1e6:5.1f} us/step "
-            f"(bare mj_step); speed ratio {c / wall:.2f} of commanded, {b / wall:.2f} of bare "
-            f"({steps} steps)"
+            f"{native / steps * 1e6:5.1f} us/step native, {loop / steps * 1e6:5.1f} us/step "
+            f"in a Python loop; speed ratio {native / wall:.2f} of native, "
+            f"{loop / wall:.2f} of the loop ({steps} steps)"
         )
 
 

@@ -13,7 +13,8 @@ the same motion, so each step costs alike whatever the length.
 
 * (a) ``play_arm`` (contacts, clearance, logging and the report) in us per
   physics step (the 0.5 s hold before the record and the 0.5 s settle counted),
-  beside bare ``mj_step`` on a fresh data of the same model for as many steps,
+  beside bare ``mj_step`` on a fresh data of the same scene compiled without
+  the recording sensors (:mod:`lynxsim.sim.sensors`) for as many steps,
   the two taken in turn in every repeat; a line fitted through the lengths
   splits each run into a fixed cost and a cost per step.
 * (b) :class:`~lynxsim.sim.collision.CollisionChecker` ``check`` and
@@ -44,7 +45,7 @@ import numpy as np
 from lynxsim.arm import LYNX_ARM
 from lynxsim.random_scenes import random_obstacles
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene, Sphere
-from lynxsim.sim.arm.model import load_arm_scene
+from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
 from lynxsim.sim.arm.playback import arm_binding, arm_checker, play_arm
 from lynxsim.sim.render import Quality, RenderSettings, SceneRenderer
 from lynxsim.traj import ArmPose, Trajectory, quintic
@@ -105,6 +106,7 @@ def playback_table(all_scenes: dict[int, Scene], lengths: list[int], repeats: in
     fits = {}
     for n, scene in all_scenes.items():
         model = load_arm_scene(scene)
+        plain = load_arm_spec(scene).compile()  # without the recording sensors
         hold = round(PRESETTLE_S / model.opt.timestep)
         walls, total_steps = [], []
         for length in lengths:
@@ -116,7 +118,7 @@ def playback_table(all_scenes: dict[int, Scene], lengths: list[int], repeats: in
                 play_s.append(time.perf_counter() - start)
                 steps = playback.log.steps + hold
                 start = time.perf_counter()
-                bare_steps(model, steps)
+                bare_steps(plain, steps)
                 bare_s.append(time.perf_counter() - start)
             wall, bare = min(play_s), min(bare_s)
             report = playback.report

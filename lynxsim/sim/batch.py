@@ -11,15 +11,18 @@ What runs where:
 
 - **Native, in parallel, no Python per step:** the unrecorded hold and every
   recorded step of every run (``mj_step``, controls from one array per run),
-  recording the time, the whole state and the actuator forces after each step.
-  ``mujoco.batch`` is used rather than ``mujoco.rollout`` because it records
-  any ``MjData`` field (the forces are not part of a state) and keeps each
-  run's warning counters.
-- **Python, after the stepping, one run after the other:** the positions and
-  contacts of every recorded state (``mj_kinematics`` + ``mj_collision`` per
-  state, the forward pass a step would make, as ``rollout`` does for a run's
-  last state), then :func:`~lynxsim.sim.rollout.finish_log`, the very code of
-  ``rollout`` (contacts classified, clearances of all states at once).
+  recording the time, the whole state and the recording sensors
+  (:mod:`lynxsim.sim.sensors`: tool, forces, carried geoms' poses, contacts)
+  after each step.
+  ``mujoco.batch`` is used rather than ``mujoco.rollout`` because it keeps
+  each run's warning counters (and records any ``MjData`` field, the forces
+  of a model without the sensors).
+- **Python, after the stepping, one run after the other:** the records cut
+  out of the sensors (only states with a self or table contact are posed again
+  for their contact lists; in a model without the sensors every state is posed,
+  ``mj_kinematics`` + ``mj_collision``), then
+  :func:`~lynxsim.sim.rollout.finish_log`, the very code of ``rollout``
+  (contacts classified, clearances of all states at once).
 - **A run in which MuJoCo warns** (an unstable state that it resets, a full
   contact buffer) is played again by ``rollout`` alone, so that its log, cut
   where it diverged and with its warnings, is ``rollout``'s own.
@@ -45,7 +48,6 @@ from lynxsim.sim.arm.playback import arm_binding, physics_grid
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.rollout import (
     PlaybackLog,
-    RunCommands,
     StepRecords,
     finish_log,
     mujoco_warnings,
@@ -53,6 +55,7 @@ from lynxsim.sim.rollout import (
     rest_at_start,
     rollout,
 )
+from lynxsim.sim.sensors import RecordingLayout
 from lynxsim.sim.summary import Playback, summarize
 from lynxsim.traj import Trajectory
 
@@ -62,7 +65,9 @@ FloatArray = npt.NDArray[np.float64]
 
 _TIME = mujoco.mjtState.mjSTATE_TIME
 _RECORD = (_TIME, "qpos", "actuator_force")
-"""What the native stepping records after each step."""
+"""What the native stepping records after each step (models without recording sensors)."""
+_SENSED = (_TIME, "qpos", "sensordata")
+"""What it records in a model with recording sensors (:mod:`lynxsim.sim.sensors`)."""
 
 
 @dataclass(frozen=True)
@@ -154,51 +159,73 @@ def batch_rollout(
     if len(hold[0]):
         sims.rollout(len(hold[0]), np.stack(hold), record=())
     sims.time = 0.0  # the record starts here; warnings of the hold still count
-    records = _step_natively(sims, ctrl)
+    layout = RecordingLayout.of(model, binding)
+    records = _step_natively(sims, ctrl, _RECORD if layout is None else _SENSED)
+    sims.forward()  # each last state's positions and contacts (sensors)
+    final = np.array(sims.sensordata)
     logs = []
     for i, (run, c) in enumerate(zip(runs, commands, strict=True)):
         if mujoco_warnings(sims.get_data(i, data)):
             logs.append(_replay(model, data, binding, run, settle_s, presettle_s))
+            continue
+        time, qpos, recorded = records[i]
+        if layout is None:
+            record = _posed_records(model, data, binding, time, qpos, recorded)
         else:
-            logs.append(_posed_log(model, data, binding, run, c, records[i]))
+            sensors = layout.split(recorded, final[i])
+            record = StepRecords.from_sensors(model, data, binding.groups, time, qpos, sensors)
+        logs.append(
+            finish_log(
+                model,
+                binding,
+                c,
+                record,
+                len(time),
+                task=run.task,
+                trajectory=run.trajectory,
+                warnings={},
+                diverged_at_s=None,
+            )
+        )
     return logs
 
 
 def _step_natively(
-    sims: mjbatch.Batch, ctrl: list[FloatArray]
+    sims: mjbatch.Batch, ctrl: list[FloatArray], record: tuple[mujoco.mjtState, str, str]
 ) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
     """Step every run through its controls, (S_i, nu); one native call per distinct length.
 
     Returns:
-        Per run: time (S_i,) [s], state (S_i, nq) and actuator forces (S_i, nu) after each step.
+        Per run: time (S_i,) [s], state (S_i, nq) and the third record item
+        (actuator forces or sensordata) after each step.
     """
-    nq, nu = sims.model.nq, sims.model.nu
+    model = sims.model
+    width = model.nu if record[2] == "actuator_force" else model.nsensordata
     lengths = np.array([len(u) for u in ctrl])
-    out = [(np.empty(s), np.empty((s, nq)), np.empty((s, nu))) for s in lengths]
+    out = [(np.empty(s), np.empty((s, model.nq)), np.empty((s, width))) for s in lengths]
     done = 0
     for end in np.unique(lengths).tolist():
         ids = np.flatnonzero(lengths >= end)
         control = np.stack([ctrl[i][done:end] for i in ids])
-        rec = sims.rollout(end - done, control, record=_RECORD, ids=ids)
+        rec = sims.rollout(end - done, control, record=record, ids=ids)
         for j, i in enumerate(ids.tolist()):
-            time, qpos, force = out[i]
+            time, qpos, third = out[i]
             time[done:end] = rec[_TIME][j, :, 0]
             qpos[done:end] = rec["qpos"][j]
-            force[done:end] = rec["actuator_force"][j]
+            third[done:end] = rec[record[2]][j]
         done = end
     return out
 
 
-def _posed_log(
+def _posed_records(
     model: mujoco.MjModel,
     data: mujoco.MjData,
     binding: RobotBinding,
-    run: BatchRun,
-    commands: RunCommands,
-    stepped: tuple[FloatArray, FloatArray, FloatArray],
-) -> PlaybackLog:
-    """The log of a run stepped natively: each state posed for its positions and contacts."""
-    time, qpos, force = stepped
+    time: FloatArray,
+    qpos: FloatArray,
+    force: FloatArray,
+) -> StepRecords:
+    """Records of a run stepped natively in a model without sensors: each state posed."""
     record = StepRecords(model, len(time), binding.tool_site_id, binding.groups)
     record.time[:] = time
     record.qpos[:] = qpos
@@ -206,17 +233,7 @@ def _posed_log(
     for k, q in enumerate(qpos):
         data.qpos[:] = q
         record.pose(k, model, data)
-    return finish_log(
-        model,
-        binding,
-        commands,
-        record,
-        len(time),
-        task=run.task,
-        trajectory=run.trajectory,
-        warnings={},
-        diverged_at_s=None,
-    )
+    return record
 
 
 def _replay(

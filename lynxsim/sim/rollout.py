@@ -4,10 +4,15 @@ The caller samples its trajectory on the physics time grid (one target per
 step) and gives the commanded tool point of each sample; :func:`rollout`
 steps MuJoCo and records, per step, the whole state, the commanded and actual
 joints, the tool site, actuator forces, the contacts that count
-(:mod:`lynxsim.sim.collision`) and the clearance to each obstacle, into
-preallocated arrays; the contacts are classified and the clearances computed
-once the run is over, for all steps at once. The verdicts
-and figures come from :func:`lynxsim.sim.summary.summarize`; videos from
+(:mod:`lynxsim.sim.collision`, one row per touching pair and step) and the
+clearance to each obstacle, into preallocated arrays; the contacts are
+classified and the clearances computed once the run is over, for all steps at
+once. In a scene compiled with the recording sensors
+(:mod:`lynxsim.sim.sensors`) a run without a step hook is stepped natively
+(``mujoco.rollout``, no Python per step) and its records read from
+``sensordata``; otherwise a Python loop records each step from ``MjData``. The
+two give the same log, bit for bit. The verdicts and figures come from
+:func:`lynxsim.sim.summary.summarize`; videos from
 :func:`lynxsim.sim.recording.render_log`.
 """
 
@@ -19,10 +24,12 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 import numpy.typing as npt
+from mujoco import rollout as native
 
 from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
+from lynxsim.sim.sensors import RecordingLayout, SensorRecords
 
 __all__ = [
     "RANGE_TOL",
@@ -218,6 +225,49 @@ def _lagged_run(
     record.pose(len(ctrl) - 1, model, data)
 
 
+def _native_run(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    start: mujoco.MjData,
+    commands: RunCommands,
+    layout: RecordingLayout,
+    groups: CollisionGroups,
+) -> StepRecords:
+    """Hold and step natively (``mujoco.rollout``), recording through the model's sensors.
+
+    ``data`` at rest on entry; on return it holds the last state (with the
+    warnings of the whole run) and ``start`` the first recorded one.
+    """
+    full = mujoco.mjtState.mjSTATE_FULLPHYSICS
+    state = np.empty(mujoco.mj_stateSize(model, full))
+    base = np.array(data.ctrl)
+
+    def play(controls: FloatArray) -> tuple[FloatArray, FloatArray]:
+        u = np.repeat(base[None], len(controls), axis=0)
+        u[:, commands.ctrl_adr] = controls
+        mujoco.mj_getState(model, data, state, full)
+        states, sensordata = native.rollout(
+            model,
+            data,
+            state,
+            u[None],
+            control_spec=mujoco.mjtState.mjSTATE_CTRL,
+            initial_warmstart=np.array(data.qacc_warmstart),
+        )
+        return states[0], sensordata[0]
+
+    if len(commands.hold):
+        play(commands.hold)
+    data.time = 0.0  # the record starts here; warnings of the hold still count
+    mujoco.mj_copyData(start, model, data)
+    states, stepped = play(commands.ctrl)
+    mujoco.mj_forward(model, data)  # the last state's positions and contacts
+    sensors = layout.split(stepped, np.array(data.sensordata))
+    return StepRecords.from_sensors(
+        model, mujoco.MjData(model), groups, states[:, 0], states[:, 1 : 1 + model.nq], sensors
+    )
+
+
 class StepRecords:
     """Preallocated per-step records of a run; contacts kept raw, classified at the end.
 
@@ -258,6 +308,10 @@ class StepRecords:
         self.tool[k] = data.site_xpos[self._site]
         self.geom_xpos[k] = data.geom_xpos[self._geom_slice]
         self.geom_xmat[k] = data.geom_xmat[self._geom_slice]
+        self.add_contacts(k, data)
+
+    def add_contacts(self, k: int, data: mujoco.MjData) -> None:
+        """Record the contacts in ``data`` as step k's (steps in order; none skipped after k)."""
         n, p = data.ncon, self._count
         if n:
             if p + n > len(self._dist):
@@ -269,6 +323,51 @@ class StepRecords:
             self._dist[p : p + n] = contact.dist
             self._count = p + n
         self.contact_start[k + 1] = self._count
+
+    @classmethod
+    def from_sensors(
+        cls,
+        model: mujoco.MjModel,
+        data: mujoco.MjData,
+        groups: CollisionGroups,
+        time: FloatArray,
+        qpos: FloatArray,
+        sensors: SensorRecords,
+    ) -> StepRecords:
+        """Records of S states stepped natively, their positions and forces from sensors.
+
+        Only the states the sensors' contact gate flags are posed again
+        (``mj_kinematics`` + ``mj_collision``) for their contact lists; the
+        others hold no contact that counts.
+
+        Args:
+            model: The model.
+            data: A data to pose states in (overwritten).
+            groups: The collision groups.
+            time: Time after each step, (S,) [s].
+            qpos: State after each step, (S, nq).
+            sensors: What the recording sensors gave for those states.
+        """
+        steps = len(time)
+        record = cls(model, 0, -1, groups)
+        record.time, record.qpos, record.force, record.tool = (
+            time,
+            qpos,
+            sensors.force,
+            sensors.tool,
+        )
+        record.geom_xpos, record.geom_xmat = sensors.geom_xpos, sensors.geom_xmat
+        record.carried = np.arange(sensors.geom_xpos.shape[1])
+        record.contact_start = np.zeros(steps + 1, dtype=np.intp)
+        for k in np.flatnonzero(sensors.gate).tolist():
+            record.contact_start[k] = record._count
+            data.qpos[:] = qpos[k]
+            mujoco.mj_kinematics(model, data)
+            mujoco.mj_collision(model, data)
+            record.add_contacts(k, data)
+        record.contact_start[steps] = record._count
+        np.maximum.accumulate(record.contact_start, out=record.contact_start)
+        return record
 
     def pose(self, k: int, model: mujoco.MjModel, data: mujoco.MjData) -> None:
         """Compute the positions and contacts of the state in ``data`` and record them as step k's.
@@ -283,13 +382,22 @@ class StepRecords:
     def contacts(
         self, groups: CollisionGroups, steps: int
     ) -> tuple[IntArray, IntArray, FloatArray]:
-        """The contacts that count in the first ``steps`` steps: step, geom pair, distance."""
+        """The contacts that count in the first ``steps`` steps: step, geom pair, distance.
+
+        One row per touching geom pair and step, its deepest contact, pairs as
+        (smaller, larger geom id), rows in order of step then pair.
+        """
         end = int(self.contact_start[steps])
         geoms, dist = self._geoms[:end], self._dist[:end]
         step = np.repeat(np.arange(steps), np.diff(self.contact_start[: steps + 1]))
         c = classify_contacts(groups, geoms, dist)
         keep = c.obstacle | c.self_hit | c.support
-        return step[keep], geoms[keep], dist[keep]
+        step, pair, dist = step[keep], np.sort(geoms[keep], axis=1), dist[keep]
+        order = np.lexsort((dist, pair[:, 1], pair[:, 0], step))
+        step, pair, dist = step[order], pair[order], dist[order]
+        first = np.ones(len(step), dtype=bool)
+        first[1:] = (step[1:] != step[:-1]) | (pair[1:] != pair[:-1]).any(axis=1)
+        return step[first], pair[first], dist[first]
 
 
 @dataclass(frozen=True)
@@ -510,21 +618,24 @@ def rollout(
     ctrl_adr, ctrl = commands.ctrl_adr, commands.ctrl
     steps = len(ctrl)
     rest_at_start(model, data, binding, commands.q_cmd[0])
-    for hold in commands.hold:
-        data.ctrl[ctrl_adr] = hold
-        mujoco.mj_step(model, data)
-    data.time = 0.0  # the record starts here; warnings of the hold still count
-
+    layout = None if on_step is not None else RecordingLayout.of(model, binding)
     start = mujoco.MjData(model) if on_step is None else None
-    if start is not None:
-        mujoco.mj_copyData(start, model, data)
-    record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
+    record: StepRecords | None = None
+    if layout is not None and start is not None:
+        record = _native_run(model, data, start, commands, layout, binding.groups)
+    else:
+        for hold in commands.hold:
+            data.ctrl[ctrl_adr] = hold
+            mujoco.mj_step(model, data)
+        data.time = 0.0  # the record starts here; warnings of the hold still count
+        if start is not None:
+            mujoco.mj_copyData(start, model, data)
+            record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
+            _lagged_run(model, data, ctrl_adr, ctrl, record)
     recorded = steps
-    if on_step is None:
-        _lagged_run(model, data, ctrl_adr, ctrl, record)
     clock = np.cumsum(np.full(steps, float(model.opt.timestep)))  # data.time: dt added per step
     finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
-    if on_step is not None or not finite or not np.array_equal(record.time, clock):
+    if record is None or not finite or not np.array_equal(record.time, clock):
         # A bad state: MuJoCo resets it (time included) inside mj_step, so the
         # positions a lagged record takes would be the reset's. Play again
         # (deterministic), each state posed on its own, cut where it diverged.

@@ -20,7 +20,9 @@ from lynxsim.arm import FRAME_NAMES, LYNX_ARM
 from lynxsim.errors import InvalidInputError
 from lynxsim.resources import model_path
 from lynxsim.scene import REPORT_SCENE, Box, Cylinder, Obstacle, Scene
+from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups
+from lynxsim.sim.sensors import add_recording_sensors
 
 __all__ = [
     "ARM_ACTUATORS",
@@ -192,10 +194,16 @@ def load_arm_spec(scene: Scene = REPORT_SCENE) -> mujoco.MjSpec:
 def load_arm_scene(scene: Scene = REPORT_SCENE) -> mujoco.MjModel:
     """Compile the arm's scene (see :func:`load_arm_spec`).
 
+    The model carries the recording sensors of its playback
+    (:func:`lynxsim.sim.sensors.add_recording_sensors`), so that a run records
+    natively.
+
     Returns:
         The compiled model (2 ms timestep, implicitfast).
     """
-    return load_arm_spec(scene).compile()
+    spec = load_arm_spec(scene)
+    plain = spec.compile()
+    return add_recording_sensors(spec, plain, SceneIds.from_model(plain).binding(plain))
 
 
 def load_arm_model() -> mujoco.MjModel:
@@ -315,4 +323,14 @@ class SceneIds:
             support=support,
             obstacle_geoms=obstacles,
             obstacle_names=tuple(model.geom(g).name for g in self.obstacle_geoms),
+        )
+
+    def binding(self, model: mujoco.MjModel) -> RobotBinding:
+        """What a playback drives and watches in this scene (or the robot alone)."""
+        return RobotBinding(
+            actuator_ids=np.asarray(self.arm_actuators, dtype=np.intp),
+            qpos_adr=np.asarray(self.arm_qpos, dtype=np.intp),
+            tool_site_id=self.tool_site,
+            groups=self.collision_groups(model),
+            gripper_actuator_id=self.gripper_actuator,
         )

@@ -21,14 +21,7 @@ __all__ = ["arm_binding", "arm_checker", "physics_grid", "play_arm"]
 
 def arm_binding(model: mujoco.MjModel) -> RobotBinding:
     """What the playback drives and watches in an arm scene (or the robot alone)."""
-    ids = SceneIds.from_model(model)
-    return RobotBinding(
-        actuator_ids=np.asarray(ids.arm_actuators, dtype=np.intp),
-        qpos_adr=np.asarray(ids.arm_qpos, dtype=np.intp),
-        tool_site_id=ids.tool_site,
-        groups=ids.collision_groups(model),
-        gripper_actuator_id=ids.gripper_actuator,
-    )
+    return SceneIds.from_model(model).binding(model)
 
 
 def arm_checker(model: mujoco.MjModel, base_qpos: npt.ArrayLike | None = None) -> CollisionChecker:
