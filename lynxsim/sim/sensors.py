@@ -108,22 +108,21 @@ def add_recording_sensors(
     for a in actuators:
         add(f"force/{a}", sensor.mjSENS_ACTUATORFRC, obj.mjOBJ_ACTUATOR, a)
 
-    def contact(name: str, objtype: mujoco.mjtObj, body: str, refname: str = "") -> None:
-        s = add(name, sensor.mjSENS_CONTACT, objtype, body)
-        if refname:
-            s.reftype, s.refname = objtype, refname
+    def contact(name: str, body: str, reftype: mujoco.mjtObj | None = None, ref: str = "") -> None:
+        """A gate sensor: how many contacts involve ``body`` (and ``ref``, if given)."""
+        s = add(name, sensor.mjSENS_CONTACT, obj.mjOBJ_BODY, body)
+        if reftype is not None:
+            s.reftype, s.refname = reftype, ref
         s.intprm[0] = _FOUND  # data="found"
         s.intprm[2] = 1  # num: one slot (found counts every match)
 
     for b in robot:
-        contact(f"touch/{b}", obj.mjOBJ_BODY, b)
+        contact(f"touch/{b}", b)
         for p in payload:
-            contact(f"touch/{b}/{p}", obj.mjOBJ_BODY, b, p)
+            contact(f"touch/{b}/{p}", b, obj.mjOBJ_BODY, p)
     for p in payload:
         for o in obstacles:
-            s = add(f"touch/{p}/{o}", sensor.mjSENS_CONTACT, obj.mjOBJ_BODY, p)
-            s.reftype, s.refname = obj.mjOBJ_GEOM, o
-            s.intprm[0], s.intprm[2] = _FOUND, 1
+            contact(f"touch/{p}/{o}", p, obj.mjOBJ_GEOM, o)
     out: mujoco.MjModel = spec.compile()
     return out
 
