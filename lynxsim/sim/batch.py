@@ -34,7 +34,7 @@ its steps are done (no step is simulated that a log does not keep).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 
 import mujoco
@@ -46,9 +46,10 @@ from lynxsim.arm import tool_pose
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.playback import arm_binding, physics_grid
 from lynxsim.sim.binding import RobotBinding
+from lynxsim.sim.overlap import cpu_count, overlapped, spare_cpu
+from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
 from lynxsim.sim.rollout import (
     PlaybackLog,
-    StepRecords,
     finish_log,
     mujoco_warnings,
     plan_commands,
@@ -147,8 +148,11 @@ def batch_rollout(
     ]
     if not commands:
         return []
+    threads = cpu_count() if nthread is None else nthread
+    background = threads > 1 and len(commands) > 1 and spare_cpu()
+    stepping = max(1, threads - 1) if background else threads
     data = mujoco.MjData(model)
-    sims = mjbatch.Batch(model, len(commands), 0 if nthread is None else nthread, persistent=True)
+    sims = mjbatch.Batch(model, len(commands), stepping, persistent=True)
     hold, ctrl = [], []
     for i, c in enumerate(commands):
         rest_at_start(model, data, binding, c.q_cmd[0])
@@ -156,44 +160,89 @@ def batch_rollout(
         base = np.array(data.ctrl)
         hold.append(_controls(base, c.ctrl_adr, c.hold))
         ctrl.append(_controls(base, c.ctrl_adr, c.ctrl))
-    if len(hold[0]):
-        sims.rollout(len(hold[0]), np.stack(hold), record=())
-    sims.time = 0.0  # the record starts here; warnings of the hold still count
     layout = RecordingLayout.of(model, binding)
-    records = _step_natively(sims, ctrl, _RECORD if layout is None else _SENSED)
-    sims.forward()  # each last state's positions and contacts (sensors)
-    final = np.array(sims.sensordata)
-    logs = []
-    for i, (run, c) in enumerate(zip(runs, commands, strict=True)):
-        if mujoco_warnings(sims.get_data(i, data)):
-            logs.append(_replay(model, data, binding, run, settle_s, presettle_s))
-            continue
-        time, qpos, recorded = records[i]
-        if layout is None:
-            record = _posed_records(model, data, binding, time, qpos, recorded)
-        else:
-            sensors = layout.split(recorded, final[i])
-            record = StepRecords.from_sensors(model, data, binding.groups, time, qpos, sensors)
-        logs.append(
-            finish_log(
+    clock, sensordata = sims.bind("time"), sims.bind("sensordata")
+    size = stepping if background else len(commands)
+    groups = [np.arange(i, min(i + size, len(commands))) for i in range(0, len(commands), size)]
+
+    def stepped() -> Iterator[list[_Stepped]]:
+        probe = mujoco.MjData(model)
+        for ids in groups:
+            if len(hold[0]):
+                sims.rollout(len(hold[0]), np.stack([hold[i] for i in ids]), record=(), ids=ids)
+            clock[ids] = 0.0  # the record starts here; warnings of the hold still count
+            records = _step_natively(
+                sims, [ctrl[i] for i in ids], _RECORD if layout is None else _SENSED, ids
+            )
+            sims.forward(ids)  # each last state's positions and contacts (sensors)
+            final = np.array(sensordata[ids])
+            yield [
+                _Stepped(
+                    int(i), *records[j], final[j], bool(mujoco_warnings(sims.get_data(i, probe)))
+                )
+                for j, i in enumerate(ids.tolist())
+            ]
+
+    logs: list[PlaybackLog | None] = [None] * len(commands)
+
+    def finish(group: list[_Stepped]) -> None:
+        for s in group:
+            run, c = runs[s.index], commands[s.index]
+            if s.warned:
+                logs[s.index] = _replay(model, data, binding, run, settle_s, presettle_s)
+                continue
+            if layout is None:
+                record = _posed_records(model, data, binding, s.time, s.qpos, s.recorded)
+            else:
+                recorder = SensedRecorder(model, binding.groups, layout, len(s.time))
+                recorder.add(SensedChunk(s.time, s.qpos, s.recorded, s.final))
+                record = recorder.finish()
+            logs[s.index] = finish_log(
                 model,
                 binding,
                 c,
                 record,
-                len(time),
+                len(s.time),
                 task=run.task,
                 trajectory=run.trajectory,
                 warnings={},
                 diverged_at_s=None,
             )
-        )
-    return logs
+
+    overlapped(stepped, finish, background=background)
+    return [log for log in logs if log is not None]
+
+
+@dataclass(frozen=True)
+class _Stepped:
+    """One run of a batch as the native stepping leaves it (S steps).
+
+    Attributes:
+        index: The run's place in the batch.
+        time: Time after each step, (S,) [s].
+        qpos: State after each step, (S, nq).
+        recorded: ``sensordata`` (or, without sensors, actuator forces) after each step.
+        final: ``sensordata`` of a forward pass at the last state.
+        warned: Whether MuJoCo warned during the run (hold included).
+    """
+
+    index: int
+    time: FloatArray
+    qpos: FloatArray
+    recorded: FloatArray
+    final: FloatArray
+    warned: bool
 
 
 def _step_natively(
-    sims: mjbatch.Batch, ctrl: list[FloatArray], record: tuple[mujoco.mjtState, str, str]
+    sims: mjbatch.Batch,
+    ctrl: list[FloatArray],
+    record: tuple[mujoco.mjtState, str, str],
+    runs: npt.NDArray[np.intp],
 ) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
-    """Step every run through its controls, (S_i, nu); one native call per distinct length.
+    """Step the batch's simulations ``runs`` through their controls, (S_i, nu) each.
+
+    One native call per distinct length.
 
     Returns:
         Per run: time (S_i,) [s], state (S_i, nq) and the third record item
@@ -207,7 +256,7 @@ def _step_natively(
     for end in np.unique(lengths).tolist():
         ids = np.flatnonzero(lengths >= end)
         control = np.stack([ctrl[i][done:end] for i in ids])
-        rec = sims.rollout(end - done, control, record=record, ids=ids)
+        rec = sims.rollout(end - done, control, record=record, ids=runs[ids])
         for j, i in enumerate(ids.tolist()):
             time, qpos, third = out[i]
             time[done:end] = rec[_TIME][j, :, 0]

@@ -34,6 +34,7 @@ from lynxsim.sim.report import CollisionVerdict, ContactPair
 
 __all__ = [
     "CLEARANCE_CAP_M",
+    "ClearancePlan",
     "CollisionCheck",
     "CollisionChecker",
     "CollisionGroups",
@@ -175,46 +176,48 @@ def obstacle_boxes(
 
 
 def _obstacle_sdf(
-    kind: int, size: FloatArray, rbound: float, local: FloatArray
-) -> tuple[FloatArray, FloatArray]:
+    kind: int, size: FloatArray, rbound: float, local: tuple[FloatArray, FloatArray, FloatArray]
+) -> tuple[FloatArray, tuple[FloatArray, FloatArray, FloatArray]]:
     """Signed distance of points to an obstacle, and the way out, in its frame.
 
     Boxes, cylinders and spheres exactly; any other type by its bounding sphere
     (a convex set around it, so the bounds built on it stay lower bounds).
+    Points come as their three coordinates, each an array of one shape (one
+    contiguous array per coordinate keeps the arithmetic vectorised).
 
     Args:
         kind: The geom type.
         size: Its MuJoCo size, (3,) [m].
         rbound: Its bounding-sphere radius [m].
-        local: Points in the obstacle's frame, (..., 3) [m].
+        local: The points' x, y and z in the obstacle's frame, each (...) [m].
 
     Returns:
-        Signed distance (..., ) [m] and, where it is positive, the vector from
-        the nearest obstacle point to the point, (..., 3) [m] (zero inside).
+        Signed distance (...) [m] and, where it is positive, the vector from
+        the nearest obstacle point to the point, as x, y, z, each (...) [m]
+        (zero inside).
     """
+    x, y, z = local
     if kind == _BOX:
-        over = np.abs(local) - size
-        out = np.copysign(np.maximum(over, 0.0), local)
-        inside = over.max(axis=-1)
-    elif kind == _CYLINDER:
-        rho = np.hypot(local[..., 0], local[..., 1])
-        radial, axial = rho - size[0], np.abs(local[..., 2]) - size[1]
-        scale = np.maximum(radial, 0.0) / np.where(rho > 0.0, rho, 1.0)
-        out = np.stack(
-            [
-                local[..., 0] * scale,
-                local[..., 1] * scale,
-                np.copysign(np.maximum(axial, 0.0), local[..., 2]),
-            ],
-            axis=-1,
+        over = (np.abs(x) - size[0], np.abs(y) - size[1], np.abs(z) - size[2])
+        inside = np.maximum(np.maximum(over[0], over[1]), over[2])
+        out = (
+            np.copysign(np.maximum(over[0], 0.0), x),
+            np.copysign(np.maximum(over[1], 0.0), y),
+            np.copysign(np.maximum(over[2], 0.0), z),
         )
+    elif kind == _CYLINDER:
+        rho = np.hypot(x, y)
+        radial, axial = rho - size[0], np.abs(z) - size[1]
+        scale = np.maximum(radial, 0.0) / np.where(rho > 0.0, rho, 1.0)
+        out = (x * scale, y * scale, np.copysign(np.maximum(axial, 0.0), z))
         inside = np.maximum(radial, axial)
     else:
         radius = size[0] if kind == _SPHERE else rbound
-        norm = np.linalg.norm(local, axis=-1)
+        norm = np.sqrt(x * x + y * y + z * z)
         inside = norm - radius
-        out = local * (np.maximum(inside, 0.0) / np.where(norm > 0.0, norm, 1.0))[..., None]
-    dist = np.linalg.norm(out, axis=-1)
+        scale = np.maximum(inside, 0.0) / np.where(norm > 0.0, norm, 1.0)
+        out = (x * scale, y * scale, z * scale)
+    dist = np.sqrt(out[0] * out[0] + out[1] * out[1] + out[2] * out[2])
     return np.where(dist > 0.0, dist, inside), out
 
 
@@ -272,18 +275,26 @@ def _bounds(
     """
     carried = np.flatnonzero(groups.carried)
     extent, reach = _extents(model, carried)
-    axes = np.asarray(xmat).reshape(*xpos.shape[:2], 3, 3)  # columns: the geom's axes
+    # One contiguous array per coordinate and per geom_xmat entry, each (N, r):
+    # a handful of elementwise passes instead of small batched products.
+    centre = np.ascontiguousarray(np.moveaxis(np.asarray(xpos), -1, 0))
+    mat = np.ascontiguousarray(np.moveaxis(np.asarray(xmat), -1, 0))
     out = np.empty((*xpos.shape[:2], len(groups.obstacle_geoms)))
     for j, g in enumerate(groups.obstacle_geoms.tolist()):
         rot = np.asarray(data.geom_xmat[g]).reshape(3, 3)
-        local = (xpos - data.geom_xpos[g]) @ rot
-        sdf, away = _obstacle_sdf(
-            int(model.geom_type[g]), model.geom_size[g], float(model.geom_rbound[g]), local
+        rel = centre - np.asarray(data.geom_xpos[g])[:, None, None]
+        x, y, z = (rel[0] * rot[0, c] + rel[1] * rot[1, c] + rel[2] * rot[2, c] for c in range(3))
+        sdf, (ax, ay, az) = _obstacle_sdf(
+            int(model.geom_type[g]), model.geom_size[g], float(model.geom_rbound[g]), (x, y, z)
         )
         outside = sdf > 0.0
-        n = (away @ rot.T) / np.where(outside, sdf, 1.0)[..., None]  # unit, world frame
-        proj = np.abs(np.einsum("nri,nria->nra", n, axes))  # |n . axis| per geom axis
-        towards = np.minimum(np.einsum("nra,ra->nr", proj, extent) + reach[:, 0], reach[:, 1])
+        inv = 1.0 / np.where(outside, sdf, 1.0)
+        # the unit direction out of the obstacle, world frame
+        nx, ny, nz = ((ax * rot[i, 0] + ay * rot[i, 1] + az * rot[i, 2]) * inv for i in range(3))
+        towards = np.broadcast_to(reach[:, 0], sdf.shape).copy()
+        for a in range(3):  # extent along geom axis a times |n . axis a|
+            towards += extent[:, a] * np.abs(nx * mat[a] + ny * mat[3 + a] + nz * mat[6 + a])
+        np.minimum(towards, reach[:, 1], out=towards)
         out[..., j] = sdf - np.where(outside, towards, reach[:, 1])
     return out
 
@@ -355,6 +366,73 @@ def clearances(
     return np.array(row, dtype=float)
 
 
+class ClearancePlan:
+    """How to get the exact clearances of many states: bounds first, then a few exact distances.
+
+    The bounds of every state come from the carried geoms' poses given, in one
+    vectorised pass (:func:`_bounds`); :meth:`fill` then computes one posed
+    state's row exactly, starting with the pair of smallest bound (most often
+    the nearest: one ``mj_geomDistance`` per obstacle). States whose every
+    bound is at least ``cap`` read ``cap`` and need not be posed (``near``).
+
+    Args:
+        model: The model.
+        data: A data of the model, posed (``mj_kinematics``) in any state: the
+            obstacles are fixed, their poses are read from it.
+        groups: The collision groups.
+        xpos: Centres of the carried geoms (robot and payload, in geom order)
+            in N states, (N, r, 3) [m].
+        xmat: Their orientations, MuJoCo's ``geom_xmat`` rows, (N, r, 9).
+        cap: Distances of ``cap`` or more read as ``cap`` [m].
+    """
+
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        data: mujoco.MjData,
+        groups: CollisionGroups,
+        xpos: FloatArray,
+        xmat: FloatArray,
+        cap: float = CLEARANCE_CAP_M,
+    ) -> None:
+        carried = np.flatnonzero(groups.carried)
+        self._model, self._cap = model, cap
+        self._geoms, self._targets = carried.tolist(), groups.obstacle_geoms.tolist()
+        self._fromto = np.zeros(6)
+        n = len(xpos)
+        if not self._targets or not self._geoms or n == 0:
+            self.near: BoolArray = np.zeros(n, dtype=bool)
+            return
+        bounds = _bounds(model, data, groups, xpos, xmat)  # (N, r, m)
+        self._order = np.argsort(bounds, axis=1)
+        self._low = np.take_along_axis(bounds, self._order, axis=1)
+        self.near = self._low[:, 0, :].min(axis=1) < cap
+        self._first = carried[self._order[:, 0, :]].tolist()
+        self._first_low = self._low[:, 0, :].tolist()
+        self._second_low = (
+            self._low[:, 1, :] if len(carried) > 1 else np.full_like(self._low[:, 0, :], cap)
+        ).tolist()
+
+    def fill(self, k: int, data: mujoco.MjData, row: FloatArray) -> None:
+        """Write state k's clearance to each obstacle into ``row``, (m,) [m].
+
+        ``data`` must be posed in state k (``mj_kinematics``); a state that is
+        not ``near`` needs no call (its row is ``cap``).
+        """
+        m, cap, fromto = self._model, self._cap, self._fromto
+        for j, (g, b0, b1, target) in enumerate(
+            zip(self._first[k], self._first_low[k], self._second_low[k], self._targets, strict=True)
+        ):
+            if b0 >= cap:
+                row[j] = cap
+                continue
+            best = min(cap, mujoco.mj_geomDistance(m, data, g, target, cap, fromto))
+            if best > b1:
+                rank, bound = self._order[k, :, j].tolist(), self._low[k, :, j].tolist()
+                best = _exact_row(m, data, self._geoms, [target], [rank], [bound], cap, fromto)[0]
+            row[j] = best
+
+
 def clearances_of_states(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -366,10 +444,10 @@ def clearances_of_states(
 ) -> FloatArray:
     """:func:`clearances` of many states at once [m], (N, m).
 
-    The bounds of every state come from the carried geoms' poses given, in one
-    vectorised pass; only a state with a pair whose bound is below ``cap`` is
-    posed again (``qpos`` into ``data``, ``mj_kinematics``) for its exact
-    distances. Each row equals what :func:`clearances` gives in that state.
+    A :class:`ClearancePlan` bounds every state at once; only a state with a
+    pair whose bound is below ``cap`` is posed again (``qpos`` into ``data``,
+    ``mj_kinematics``) for its exact distances. Each row equals what
+    :func:`clearances` gives in that state.
 
     Args:
         model: The model.
@@ -386,41 +464,18 @@ def clearances_of_states(
         Shape (N, m).
     """
     states = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
-    obstacles = groups.obstacle_geoms
-    carried = np.flatnonzero(groups.carried)
-    out = np.full((len(states), len(obstacles)), cap)
-    if len(obstacles) == 0 or len(carried) == 0 or len(states) == 0:
-        return out
-    centres = np.asarray(xpos, dtype=float).reshape(len(states), len(carried), 3)
-    axes = np.asarray(xmat, dtype=float).reshape(len(states), len(carried), 9)
-    data.qpos[:] = states[0]
-    mujoco.mj_kinematics(model, data)  # the obstacles' poses
-    bounds = _bounds(model, data, groups, centres, axes)  # (N, r, m)
-    order = np.argsort(bounds, axis=1)
-    low = np.take_along_axis(bounds, order, axis=1)
-    near = np.flatnonzero(low[:, 0, :].min(axis=1) < cap).tolist()
-    geoms, targets, fromto = carried.tolist(), obstacles.tolist(), np.zeros(6)
-    # Most often the pair of smallest bound is the nearest and its distance is
-    # below the next bound: one mj_geomDistance per obstacle, the rest of the
-    # order only looked at otherwise.
-    first = carried[order[:, 0, :]].tolist()
-    first_low = low[:, 0, :].tolist()
-    second_low = low[:, 1, :].tolist() if len(carried) > 1 else np.full_like(low[:, 0, :], cap)
-    m = model
-    for k in near:
+    r = int(np.count_nonzero(groups.carried))
+    out = np.full((len(states), len(groups.obstacle_geoms)), cap)
+    if len(states):
+        data.qpos[:] = states[0]
+        mujoco.mj_kinematics(model, data)  # the obstacles' poses
+    centres = np.asarray(xpos, dtype=float).reshape(len(states), r, 3)
+    axes = np.asarray(xmat, dtype=float).reshape(len(states), r, 9)
+    plan = ClearancePlan(model, data, groups, centres, axes, cap)
+    for k in np.flatnonzero(plan.near).tolist():
         data.qpos[:] = states[k]
-        mujoco.mj_kinematics(m, data)
-        row = out[k]
-        for j, (g, b0, b1, target) in enumerate(
-            zip(first[k], first_low[k], second_low[k], targets, strict=True)
-        ):
-            if b0 >= cap:
-                continue
-            best = min(cap, mujoco.mj_geomDistance(m, data, g, target, cap, fromto))
-            if best > b1:
-                rank, bound = order[k, :, j].tolist(), low[k, :, j].tolist()
-                best = _exact_row(m, data, geoms, [target], [rank], [bound], cap, fromto)[0]
-            row[j] = best
+        mujoco.mj_kinematics(model, data)
+        plan.fill(k, data, out[k])
     return out
 
 

@@ -18,7 +18,7 @@ two give the same log, bit for bit. The verdicts and figures come from
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 import mujoco
@@ -29,7 +29,9 @@ from mujoco import rollout as native
 from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
-from lynxsim.sim.sensors import RecordingLayout, SensorRecords
+from lynxsim.sim.overlap import overlapped, spare_cpu
+from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
+from lynxsim.sim.sensors import RecordingLayout
 
 __all__ = [
     "RANGE_TOL",
@@ -37,7 +39,7 @@ __all__ = [
     "PlaybackLog",
     "RunCommands",
     "StepHook",
-    "StepRecords",
+    "chunk_bounds",
     "finish_log",
     "mujoco_warnings",
     "plan_commands",
@@ -50,6 +52,10 @@ IntArray = npt.NDArray[np.intp]
 
 StepHook = Callable[[int, mujoco.MjData], None]
 """Called after each recorded physics step with (step index, data)."""
+
+_CHUNK_FIRST = 32
+_CHUNK_MOST = 128
+"""Steps of the first native chunk of a run, and the most of any (see :func:`chunk_bounds`)."""
 
 RANGE_TOL = 1e-6
 """Commands may exceed a joint range by this much [rad] (rounding of the samples)."""
@@ -148,6 +154,32 @@ def mujoco_warnings(data: mujoco.MjData) -> dict[str, int]:
     return out
 
 
+class _Snapshot:
+    """What a run is played again from: a data's integration state and warning counters.
+
+    Taking it costs a copy of the state vector, not a whole ``MjData``.
+    """
+
+    _SPEC = mujoco.mjtState.mjSTATE_INTEGRATION
+
+    def __init__(self, model: mujoco.MjModel) -> None:
+        self._state = np.empty(mujoco.mj_stateSize(model, self._SPEC))
+        self._number = np.zeros(int(mujoco.mjtWarning.mjNWARNING), dtype=np.int32)
+        self._lastinfo = np.zeros_like(self._number)
+
+    def take(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        """Remember the state of ``data``."""
+        mujoco.mj_getState(model, data, self._state, self._SPEC)
+        self._number[:] = data.warning.number
+        self._lastinfo[:] = data.warning.lastinfo
+
+    def restore(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
+        """Put ``data`` back in the remembered state (its next step is the same)."""
+        mujoco.mj_setState(model, data, self._state, self._SPEC)
+        data.warning.number[:] = self._number
+        data.warning.lastinfo[:] = self._lastinfo
+
+
 def _check_ranges(
     model: mujoco.MjModel, binding: RobotBinding, q_cmd: FloatArray, dt: float
 ) -> None:
@@ -225,18 +257,37 @@ def _lagged_run(
     record.pose(len(ctrl) - 1, model, data)
 
 
+def chunk_bounds(steps: int) -> list[tuple[int, int]]:
+    """How a run of ``steps`` steps is stepped natively: consecutive (start, end) pairs.
+
+    Small at first (the first chunk's records wait for its stepping), then
+    ``_CHUNK_MOST`` steps each (the last chunk's records are made after all
+    stepping, so it stays short too).
+    """
+    out, start, size = [], 0, _CHUNK_FIRST
+    while start < steps:
+        end = min(steps, start + size)
+        out.append((start, end))
+        start, size = end, min(2 * size, _CHUNK_MOST)
+    return out
+
+
 def _native_run(
     model: mujoco.MjModel,
     data: mujoco.MjData,
-    start: mujoco.MjData,
+    start: _Snapshot,
     commands: RunCommands,
     layout: RecordingLayout,
     groups: CollisionGroups,
 ) -> StepRecords:
     """Hold and step natively (``mujoco.rollout``), recording through the model's sensors.
 
-    ``data`` at rest on entry; on return it holds the last state (with the
-    warnings of the whole run) and ``start`` the first recorded one.
+    The recorded steps are stepped in chunks (:func:`chunk_bounds`) in a
+    background thread where a second CPU is free, while this thread makes the
+    records of the chunks already stepped (:class:`SensedRecorder`); the same
+    records either way. ``data`` at rest on entry; on return it holds the last
+    state (with the warnings of the whole run) and ``start`` the state the
+    record starts from.
     """
     full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     state = np.empty(mujoco.mj_stateSize(model, full))
@@ -256,148 +307,23 @@ def _native_run(
         )
         return states[0], sensordata[0]
 
-    if len(commands.hold):
-        play(commands.hold)
-    data.time = 0.0  # the record starts here; warnings of the hold still count
-    mujoco.mj_copyData(start, model, data)
-    states, stepped = play(commands.ctrl)
-    mujoco.mj_forward(model, data)  # the last state's positions and contacts
-    sensors = layout.split(stepped, np.array(data.sensordata))
-    return StepRecords.from_sensors(
-        model, mujoco.MjData(model), groups, states[:, 0], states[:, 1 : 1 + model.nq], sensors
-    )
+    def chunks() -> Iterator[SensedChunk]:
+        if len(commands.hold):
+            play(commands.hold)
+        data.time = 0.0  # the record starts here; warnings of the hold still count
+        start.take(model, data)
+        bounds = chunk_bounds(len(commands.ctrl))
+        for i, (a, b) in enumerate(bounds):
+            states, stepped = play(commands.ctrl[a:b])
+            final = None
+            if i == len(bounds) - 1:
+                mujoco.mj_forward(model, data)  # the last state's positions and contacts
+                final = np.array(data.sensordata)
+            yield SensedChunk(states[:, 0], states[:, 1 : 1 + model.nq], stepped, final)
 
-
-class StepRecords:
-    """Preallocated per-step records of a run; contacts kept raw, classified at the end.
-
-    Args:
-        model: The model.
-        steps: Number of steps S to record.
-        tool_site: Id of the tracked site.
-        groups: The collision groups (the carried geoms' poses are recorded).
-    """
-
-    def __init__(
-        self, model: mujoco.MjModel, steps: int, tool_site: int, groups: CollisionGroups
-    ) -> None:
-        carried = np.flatnonzero(groups.carried)
-        lo, hi = (int(carried[0]), int(carried[-1]) + 1) if len(carried) else (0, 0)
-        self.carried = carried - lo  # their columns in the geom records
-        self.time = np.empty(steps)
-        self.qpos = np.empty((steps, model.nq))
-        self.force = np.empty((steps, model.nu))
-        self.tool = np.empty((steps, 3))
-        self.geom_xpos = np.empty((steps, hi - lo, 3))
-        self.geom_xmat = np.empty((steps, hi - lo, 9))
-        self._geom_slice = slice(lo, hi)
-        self.contact_start = np.zeros(steps + 1, dtype=np.intp)
-        self._geoms = np.empty((max(16, 8 * steps), 2), dtype=np.intp)
-        self._dist = np.empty(len(self._geoms))
-        self._count = 0
-        self._site = tool_site
-
-    def state(self, k: int, data: mujoco.MjData) -> None:
-        """What the step reached: time, whole state and actuator forces (of the step itself)."""
-        self.time[k] = data.time
-        self.qpos[k] = data.qpos
-        self.force[k] = data.actuator_force
-
-    def positions(self, k: int, data: mujoco.MjData) -> None:
-        """Positions and contacts of step k's state (``data`` must hold them)."""
-        self.tool[k] = data.site_xpos[self._site]
-        self.geom_xpos[k] = data.geom_xpos[self._geom_slice]
-        self.geom_xmat[k] = data.geom_xmat[self._geom_slice]
-        self.add_contacts(k, data)
-
-    def add_contacts(self, k: int, data: mujoco.MjData) -> None:
-        """Record the contacts in ``data`` as step k's (steps in order; none skipped after k)."""
-        n, p = data.ncon, self._count
-        if n:
-            if p + n > len(self._dist):
-                grow = max(n, len(self._dist))
-                self._geoms = np.concatenate([self._geoms, np.empty((grow, 2), dtype=np.intp)])
-                self._dist = np.concatenate([self._dist, np.empty(grow)])
-            contact = data.contact
-            self._geoms[p : p + n] = contact.geom
-            self._dist[p : p + n] = contact.dist
-            self._count = p + n
-        self.contact_start[k + 1] = self._count
-
-    @classmethod
-    def from_sensors(
-        cls,
-        model: mujoco.MjModel,
-        data: mujoco.MjData,
-        groups: CollisionGroups,
-        time: FloatArray,
-        qpos: FloatArray,
-        sensors: SensorRecords,
-    ) -> StepRecords:
-        """Records of S states stepped natively, their positions and forces from sensors.
-
-        Only the states the sensors' contact gate flags are posed again
-        (``mj_kinematics`` + ``mj_collision``) for their contact lists; the
-        others hold no contact that counts.
-
-        Args:
-            model: The model.
-            data: A data to pose states in (overwritten).
-            groups: The collision groups.
-            time: Time after each step, (S,) [s].
-            qpos: State after each step, (S, nq).
-            sensors: What the recording sensors gave for those states.
-        """
-        steps = len(time)
-        record = cls(model, 0, -1, groups)
-        record.time, record.qpos, record.force, record.tool = (
-            time,
-            qpos,
-            sensors.force,
-            sensors.tool,
-        )
-        record.geom_xpos, record.geom_xmat = sensors.geom_xpos, sensors.geom_xmat
-        record.carried = np.arange(sensors.geom_xpos.shape[1])
-        record.contact_start = np.zeros(steps + 1, dtype=np.intp)
-        for k in np.flatnonzero(sensors.gate).tolist():
-            record.contact_start[k] = record._count
-            data.qpos[:] = qpos[k]
-            mujoco.mj_kinematics(model, data)
-            mujoco.mj_collision(model, data)
-            record.add_contacts(k, data)
-        record.contact_start[steps] = record._count
-        np.maximum.accumulate(record.contact_start, out=record.contact_start)
-        return record
-
-    def pose(self, k: int, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        """Compute the positions and contacts of the state in ``data`` and record them as step k's.
-
-        ``mj_kinematics`` + ``mj_collision``: the same positions and contacts as
-        the forward pass of a ``mj_step`` that starts from this state.
-        """
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_collision(model, data)
-        self.positions(k, data)
-
-    def contacts(
-        self, groups: CollisionGroups, steps: int
-    ) -> tuple[IntArray, IntArray, FloatArray]:
-        """The contacts that count in the first ``steps`` steps: step, geom pair, distance.
-
-        One row per touching geom pair and step, its deepest contact, pairs as
-        (smaller, larger geom id), rows in order of step then pair.
-        """
-        end = int(self.contact_start[steps])
-        geoms, dist = self._geoms[:end], self._dist[:end]
-        step = np.repeat(np.arange(steps), np.diff(self.contact_start[: steps + 1]))
-        c = classify_contacts(groups, geoms, dist)
-        keep = c.obstacle | c.self_hit | c.support
-        step, pair, dist = step[keep], np.sort(geoms[keep], axis=1), dist[keep]
-        order = np.lexsort((dist, pair[:, 1], pair[:, 0], step))
-        step, pair, dist = step[order], pair[order], dist[order]
-        first = np.ones(len(step), dtype=bool)
-        first[1:] = (step[1:] != step[:-1]) | (pair[1:] != pair[:-1]).any(axis=1)
-        return step[first], pair[first], dist[first]
+    recorder = SensedRecorder(model, groups, layout, len(commands.ctrl))
+    overlapped(chunks, recorder.add, background=spare_cpu())
+    return recorder.finish()
 
 
 @dataclass(frozen=True)
@@ -516,14 +442,17 @@ def finish_log(
     ctrl = commands.ctrl
     c_step, c_geoms, c_dist = record.contacts(groups, recorded)
     qpos = record.qpos[:recorded].copy()
-    clearance = clearances_of_states(
-        model,
-        mujoco.MjData(model),
-        groups,
-        qpos,
-        record.geom_xpos[:recorded, record.carried],
-        record.geom_xmat[:recorded, record.carried],
-    )
+    if record.clearance is not None:
+        clearance = record.clearance[:recorded].copy()
+    else:
+        clearance = clearances_of_states(
+            model,
+            mujoco.MjData(model),
+            groups,
+            qpos,
+            record.geom_xpos[:recorded, record.carried],
+            record.geom_xmat[:recorded, record.carried],
+        )
     tool_ref, settle_steps = commands.tool_ref, commands.settle_steps
     ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
     meta = LogMeta(
@@ -619,7 +548,7 @@ def rollout(
     steps = len(ctrl)
     rest_at_start(model, data, binding, commands.q_cmd[0])
     layout = None if on_step is not None else RecordingLayout.of(model, binding)
-    start = mujoco.MjData(model) if on_step is None else None
+    start = _Snapshot(model) if on_step is None else None
     record: StepRecords | None = None
     if layout is not None and start is not None:
         record = _native_run(model, data, start, commands, layout, binding.groups)
@@ -629,7 +558,7 @@ def rollout(
             mujoco.mj_step(model, data)
         data.time = 0.0  # the record starts here; warnings of the hold still count
         if start is not None:
-            mujoco.mj_copyData(start, model, data)
+            start.take(model, data)
             record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
             _lagged_run(model, data, ctrl_adr, ctrl, record)
     recorded = steps
@@ -640,7 +569,7 @@ def rollout(
         # positions a lagged record takes would be the reset's. Play again
         # (deterministic), each state posed on its own, cut where it diverged.
         if start is not None:
-            mujoco.mj_copyData(data, model, start)
+            start.restore(model, data)
         record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
         recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step)
     return finish_log(

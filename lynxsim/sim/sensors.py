@@ -50,16 +50,43 @@ _AXES = ("x", "y", "z")
 _FOUND = 1  # the contact sensor's data bit for "found"
 
 
-def _names(model: mujoco.MjModel, binding: RobotBinding) -> tuple[list[str], list[str], list[str]]:
-    """Carried geoms, robot bodies and payload bodies by name ("" where unnamed)."""
+def _robot_roots(model: mujoco.MjModel, binding: RobotBinding) -> list[int] | None:
+    """Bodies whose subtrees hold the robot: its bodies with no robot body above them.
+
+    None if a subtree also holds a geom that can collide and is not the
+    robot's (its contacts would pass for the robot's).
+    """
+    groups = binding.groups
+    parent = np.asarray(model.body_parentid)
+    body_of = np.asarray(model.geom_bodyid)
+    robot = set(body_of[groups.robot].tolist())
+
+    def above(b: int) -> set[int]:
+        out = set()
+        while b:
+            b = int(parent[b])
+            out.add(b)
+        return out
+
+    roots = sorted(b for b in robot if not above(b) & robot)
+    collides = (np.asarray(model.geom_contype) | np.asarray(model.geom_conaffinity)) != 0
+    for g in np.flatnonzero(collides & ~groups.robot).tolist():
+        if above(int(body_of[g])) & set(roots) or int(body_of[g]) in roots:
+            return None
+    return roots
+
+
+def _names(
+    model: mujoco.MjModel, binding: RobotBinding, roots: list[int]
+) -> tuple[list[str], list[str], list[str]]:
+    """Carried geoms, robot subtree roots and payload bodies by name ("" where unnamed)."""
     groups = binding.groups
     body_of = np.asarray(model.geom_bodyid)
     carried = [model.geom(int(g)).name for g in np.flatnonzero(groups.carried)]
-    robot = sorted(set(body_of[groups.robot].tolist()))
     payload = sorted(set(body_of[groups.payload].tolist()))
     return (
         carried,
-        [model.body(b).name for b in robot],
+        [model.body(b).name for b in roots],
         [model.body(b).name for b in payload],
     )
 
@@ -78,7 +105,10 @@ def add_recording_sensors(
         The model with the sensors; ``model`` itself if an element they need
         has no name (a playback then records in Python, the same records).
     """
-    carried, robot, payload = _names(model, binding)
+    roots = _robot_roots(model, binding)
+    if roots is None:
+        return model
+    carried, robot, payload = _names(model, binding, roots)
     obstacles = [model.geom(int(g)).name for g in binding.groups.obstacle_geoms]
     actuators = [model.actuator(a).name for a in range(model.nu)]
     tool = model.site(binding.tool_site_id).name
@@ -108,21 +138,27 @@ def add_recording_sensors(
     for a in actuators:
         add(f"force/{a}", sensor.mjSENS_ACTUATORFRC, obj.mjOBJ_ACTUATOR, a)
 
-    def contact(name: str, body: str, reftype: mujoco.mjtObj | None = None, ref: str = "") -> None:
+    def contact(
+        name: str,
+        objtype: mujoco.mjtObj,
+        body: str,
+        reftype: mujoco.mjtObj | None = None,
+        ref: str = "",
+    ) -> None:
         """A gate sensor: how many contacts involve ``body`` (and ``ref``, if given)."""
-        s = add(name, sensor.mjSENS_CONTACT, obj.mjOBJ_BODY, body)
+        s = add(name, sensor.mjSENS_CONTACT, objtype, body)
         if reftype is not None:
             s.reftype, s.refname = reftype, ref
         s.intprm[0] = _FOUND  # data="found"
         s.intprm[2] = 1  # num: one slot (found counts every match)
 
-    for b in robot:
-        contact(f"touch/{b}", b)
+    for b in robot:  # mjOBJ_XBODY: the body's subtree
+        contact(f"touch/{b}", obj.mjOBJ_XBODY, b)
         for p in payload:
-            contact(f"touch/{b}/{p}", b, obj.mjOBJ_BODY, p)
+            contact(f"touch/{b}/{p}", obj.mjOBJ_XBODY, b, obj.mjOBJ_BODY, p)
     for p in payload:
         for o in obstacles:
-            contact(f"touch/{p}/{o}", p, obj.mjOBJ_GEOM, o)
+            contact(f"touch/{p}/{o}", obj.mjOBJ_BODY, p, obj.mjOBJ_GEOM, o)
     out: mujoco.MjModel = spec.compile()
     return out
 
@@ -178,7 +214,10 @@ class RecordingLayout:
         }
         if _TOOL not in adr:
             return None
-        carried, robot, payload = _names(model, binding)
+        roots = _robot_roots(model, binding)
+        if roots is None:
+            return None
+        carried, robot, payload = _names(model, binding, roots)
         obstacles = [model.geom(int(g)).name for g in binding.groups.obstacle_geoms]
         pos = np.array([adr[f"{PREFIX}pos/{g}"] for g in carried], dtype=np.intp).reshape(-1, 1)
         axes = np.array(
