@@ -46,10 +46,12 @@ from lynxsim.arm import tool_pose
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.playback import arm_binding, physics_grid
 from lynxsim.sim.binding import RobotBinding
-from lynxsim.sim.overlap import cpu_count, overlapped, spare_cpu
+from lynxsim.sim.overlap import cpu_count, share_stepping
 from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
 from lynxsim.sim.rollout import (
     PlaybackLog,
+    RunCommands,
+    chunk_bounds,
     finish_log,
     mujoco_warnings,
     plan_commands,
@@ -68,6 +70,8 @@ _TIME = mujoco.mjtState.mjSTATE_TIME
 _RECORD = (_TIME, "qpos", "actuator_force")
 """What the native stepping records after each step (models without recording sensors)."""
 _SENSED = (_TIME, "qpos", "sensordata")
+_SOURCES_PER_THREAD = 1
+"""Runs are stepped in this many independent groups per thread (each a batch of its own)."""
 """What it records in a model with recording sensors (:mod:`lynxsim.sim.sensors`)."""
 
 
@@ -149,89 +153,102 @@ def batch_rollout(
     if not commands:
         return []
     threads = cpu_count() if nthread is None else nthread
-    background = threads > 1 and len(commands) > 1 and spare_cpu()
-    stepping = max(1, threads - 1) if background else threads
-    data = mujoco.MjData(model)
-    sims = mjbatch.Batch(model, len(commands), stepping, persistent=True)
-    hold, ctrl = [], []
-    for i, c in enumerate(commands):
-        rest_at_start(model, data, binding, c.q_cmd[0])
-        mujoco.mj_getState(model, data, sims.state[i], mujoco.mjtState.mjSTATE_INTEGRATION)
-        base = np.array(data.ctrl)
-        hold.append(_controls(base, c.ctrl_adr, c.hold))
-        ctrl.append(_controls(base, c.ctrl_adr, c.ctrl))
     layout = RecordingLayout.of(model, binding)
-    clock, sensordata = sims.bind("time"), sims.bind("sensordata")
-    size = stepping if background else len(commands)
-    groups = [np.arange(i, min(i + size, len(commands))) for i in range(0, len(commands), size)]
-
-    def stepped() -> Iterator[list[_Stepped]]:
-        probe = mujoco.MjData(model)
-        for ids in groups:
-            if len(hold[0]):
-                sims.rollout(len(hold[0]), np.stack([hold[i] for i in ids]), record=(), ids=ids)
-            clock[ids] = 0.0  # the record starts here; warnings of the hold still count
-            records = _step_natively(
-                sims, [ctrl[i] for i in ids], _RECORD if layout is None else _SENSED, ids
-            )
-            sims.forward(ids)  # each last state's positions and contacts (sensors)
-            final = np.array(sensordata[ids])
-            yield [
-                _Stepped(
-                    int(i), *records[j], final[j], bool(mujoco_warnings(sims.get_data(i, probe)))
-                )
-                for j, i in enumerate(ids.tolist())
-            ]
-
+    data = mujoco.MjData(model)
+    lengths = [len(c.ctrl) for c in commands]
     logs: list[PlaybackLog | None] = [None] * len(commands)
+    recorders = [
+        None if layout is None else SensedRecorder(model, binding.groups, layout, n)
+        for n in lengths
+    ]
+    pieces: list[list[SensedChunk]] = [[] for _ in commands]
 
-    def finish(group: list[_Stepped]) -> None:
-        for s in group:
-            run, c = runs[s.index], commands[s.index]
-            if s.warned:
-                logs[s.index] = _replay(model, data, binding, run, settle_s, presettle_s)
-                continue
-            if layout is None:
-                record = _posed_records(model, data, binding, s.time, s.qpos, s.recorded)
+    def record(chunks: list[tuple[int, SensedChunk, bool]]) -> None:
+        for i, chunk, warned in chunks:
+            recorder = recorders[i]
+            if recorder is not None:
+                recorder.add(chunk)
             else:
-                recorder = SensedRecorder(model, binding.groups, layout, len(s.time))
-                recorder.add(SensedChunk(s.time, s.qpos, s.recorded, s.final))
-                record = recorder.finish()
-            logs[s.index] = finish_log(
-                model,
-                binding,
-                c,
-                record,
-                len(s.time),
-                task=run.task,
-                trajectory=run.trajectory,
-                warnings={},
-                diverged_at_s=None,
-            )
+                pieces[i].append(chunk)
+            if chunk.final is not None:
+                logs[i] = _log(i, warned, recorder)
 
-    overlapped(stepped, finish, background=background)
+    def _log(i: int, warned: bool, recorder: SensedRecorder | None) -> PlaybackLog:
+        run, c = runs[i], commands[i]
+        if warned:
+            return _replay(model, data, binding, run, settle_s, presettle_s)
+        if recorder is not None:
+            steps = recorder.finish()
+        else:
+            time, qpos, force = (
+                np.concatenate(x)
+                for x in zip(*((p.time, p.qpos, p.sensordata) for p in pieces[i]), strict=True)
+            )
+            steps = _posed_records(model, data, binding, time, qpos, force)
+        return finish_log(
+            model,
+            binding,
+            c,
+            steps,
+            lengths[i],
+            task=run.task,
+            trajectory=run.trajectory,
+            warnings={},
+            diverged_at_s=None,
+        )
+
+    count = min(len(commands), _SOURCES_PER_THREAD * threads) if threads > 1 else 1
+    sources = [
+        _stepped(model, binding, commands, list(range(g, len(commands), count)), layout is None)
+        for g in range(count)
+    ]
+    share_stepping(sources, record, helpers=threads - 1)
     return [log for log in logs if log is not None]
 
 
-@dataclass(frozen=True)
-class _Stepped:
-    """One run of a batch as the native stepping leaves it (S steps).
+def _stepped(
+    model: mujoco.MjModel,
+    binding: RobotBinding,
+    commands: list[RunCommands],
+    share: list[int],
+    bare: bool,
+) -> Iterator[list[tuple[int, SensedChunk, bool]]]:
+    """Step runs ``share`` of a batch natively, in time chunks, in a batch of their own.
 
-    Attributes:
-        index: The run's place in the batch.
-        time: Time after each step, (S,) [s].
-        qpos: State after each step, (S, nq).
-        recorded: ``sensordata`` (or, without sensors, actuator forces) after each step.
-        final: ``sensordata`` of a forward pass at the last state.
-        warned: Whether MuJoCo warned during the run (hold included).
+    Yields, per chunk (:func:`~lynxsim.sim.rollout.chunk_bounds`), each run
+    still stepping: (run, chunk, whether MuJoCo warned in the run, known at its
+    last chunk). ``bare``: the model has no recording sensors (the chunk's
+    ``sensordata`` then holds actuator forces).
     """
-
-    index: int
-    time: FloatArray
-    qpos: FloatArray
-    recorded: FloatArray
-    final: FloatArray
-    warned: bool
+    data = mujoco.MjData(model)
+    sims = mjbatch.Batch(model, len(share), 1, persistent=True)
+    hold, ctrl = [], []
+    for j, i in enumerate(share):
+        c = commands[i]
+        rest_at_start(model, data, binding, c.q_cmd[0])
+        mujoco.mj_getState(model, data, sims.state[j], mujoco.mjtState.mjSTATE_INTEGRATION)
+        base = np.array(data.ctrl)
+        hold.append(_controls(base, c.ctrl_adr, c.hold))
+        ctrl.append(_controls(base, c.ctrl_adr, c.ctrl))
+    clock, sensordata = sims.bind("time"), sims.bind("sensordata")
+    if len(hold[0]):
+        sims.rollout(len(hold[0]), np.stack(hold), record=())
+    clock[:] = 0.0  # the record starts here; warnings of the hold still count
+    lengths = [len(u) for u in ctrl]
+    what = _RECORD if bare else _SENSED
+    for a, b in chunk_bounds(max(lengths)):
+        ids = [j for j, n in enumerate(lengths) if n > a]
+        records = _step_natively(sims, [ctrl[j][a:b] for j in ids], what, np.array(ids))
+        ending = [j for j in ids if lengths[j] <= b]
+        if ending:
+            sims.forward(ending)  # each last state's positions and contacts (sensors)
+        out = []
+        for j, (time, qpos, third) in zip(ids, records, strict=True):
+            last = lengths[j] <= b
+            final = np.array(sensordata[j]) if last else None
+            warned = last and bool(mujoco_warnings(sims.get_data(j, data)))
+            out.append((share[j], SensedChunk(time, qpos, third, final), warned))
+        yield out
 
 
 def _step_natively(

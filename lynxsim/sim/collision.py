@@ -34,6 +34,7 @@ from lynxsim.sim.report import CollisionVerdict, ContactPair
 
 __all__ = [
     "CLEARANCE_CAP_M",
+    "ClearanceGeometry",
     "ClearancePlan",
     "CollisionCheck",
     "CollisionChecker",
@@ -142,20 +143,21 @@ def classify_contacts(
         The :class:`ContactClasses`.
     """
     g = np.asarray(geoms, dtype=np.intp).reshape(-1, 2)
+    a, b = g[:, 0], g[:, 1]  # the two columns apart: a reduction over an axis of 2 is slow
     touching = np.asarray(dist, dtype=float).reshape(-1) <= 0.0
-    robot = groups.robot[g]
-    carried = groups.carried[g]
-    index = groups.obstacle_index[g]
-    is_obstacle = index >= 0
-    obstacle = touching & carried.any(axis=1) & is_obstacle.any(axis=1)
-    self_hit = touching & robot.all(axis=1)
-    support = touching & robot.any(axis=1) & groups.support[g].any(axis=1) & ~obstacle
+    robot, carried, support = groups.robot, groups.carried, groups.support
+    index = groups.obstacle_index
+    carried_a, carried_b, index_a, index_b = carried[a], carried[b], index[a], index[b]
+    obstacle = touching & (carried_a | carried_b) & ((index_a >= 0) | (index_b >= 0))
+    robot_a, robot_b = robot[a], robot[b]
+    self_hit = touching & robot_a & robot_b
+    on_support = (robot_a | robot_b) & (support[a] | support[b])
     return ContactClasses(
         obstacle=obstacle,
-        obstacle_index=np.where(obstacle, index.max(axis=1), -1),
+        obstacle_index=np.where(obstacle, np.maximum(index_a, index_b), -1),
         self_hit=self_hit,
-        support=support,
-        carried_first=carried[:, 0],
+        support=touching & on_support & ~obstacle,
+        carried_first=carried_a,
     )
 
 
@@ -250,13 +252,58 @@ def _extents(model: mujoco.MjModel, geoms: IntArray) -> tuple[FloatArray, FloatA
     return linear, np.column_stack([const, rbound])
 
 
-def _bounds(
-    model: mujoco.MjModel,
-    data: mujoco.MjData,
-    groups: CollisionGroups,
-    xpos: FloatArray,
-    xmat: FloatArray,
-) -> FloatArray:
+@dataclass(frozen=True)
+class ClearanceGeometry:
+    """What the clearance bounds need of a scene, fixed for all its states.
+
+    Attributes:
+        carried: The carried geoms (robot and payload), (r,).
+        extent: Their extents along their axes, (r, 3) [m] (see :func:`_extents`).
+        reach: Per carried geom, the constant part of its extent and its
+            bounding radius, (r, 2) [m].
+        obstacles: The obstacle geoms, (m,).
+        kind: Their geom types, (m,).
+        size: Their MuJoCo sizes, (m, 3) [m].
+        rbound: Their bounding radii, (m,) [m].
+        pos: Their centres, (m, 3) [m].
+        rot: Their orientations, (m, 3, 3).
+    """
+
+    carried: IntArray
+    extent: FloatArray
+    reach: FloatArray
+    obstacles: IntArray
+    kind: IntArray
+    size: FloatArray
+    rbound: FloatArray
+    pos: FloatArray
+    rot: FloatArray
+
+    @classmethod
+    def of(
+        cls, model: mujoco.MjModel, data: mujoco.MjData, groups: CollisionGroups
+    ) -> ClearanceGeometry:
+        """The geometry of a scene; ``data`` posed in any state (``mj_kinematics``).
+
+        Obstacles are fixed to the world: their poses hold for every state.
+        """
+        carried = np.flatnonzero(groups.carried)
+        obstacles = np.asarray(groups.obstacle_geoms, dtype=np.intp)
+        extent, reach = _extents(model, carried)
+        return cls(
+            carried=carried,
+            extent=extent,
+            reach=reach,
+            obstacles=obstacles,
+            kind=np.asarray(model.geom_type)[obstacles].astype(np.intp),
+            size=np.asarray(model.geom_size)[obstacles].copy(),
+            rbound=np.asarray(model.geom_rbound)[obstacles].copy(),
+            pos=np.asarray(data.geom_xpos)[obstacles].copy(),
+            rot=np.asarray(data.geom_xmat)[obstacles].reshape(-1, 3, 3).copy(),
+        )
+
+
+def _bounds(geometry: ClearanceGeometry, xpos: FloatArray, xmat: FloatArray) -> FloatArray:
     """Lower bounds of the distance of every carried geom to every obstacle [m], (N, r, m).
 
     A carried geom whose centre c lies outside an obstacle O is at least
@@ -267,25 +314,22 @@ def _bounds(
     points of the geom (as MuJoCo's depth does for shallow contacts).
 
     Args:
-        model: The model.
-        data: A data of the model with the obstacles' poses (any ``mj_kinematics``).
-        groups: The collision groups.
+        geometry: The scene's clearance geometry.
         xpos: Centres of the r carried geoms in N states, (N, r, 3) [m].
         xmat: Their orientations (rows of MuJoCo's ``geom_xmat``), (N, r, 9).
     """
-    carried = np.flatnonzero(groups.carried)
-    extent, reach = _extents(model, carried)
+    extent, reach = geometry.extent, geometry.reach
     # One contiguous array per coordinate and per geom_xmat entry, each (N, r):
     # a handful of elementwise passes instead of small batched products.
     centre = np.ascontiguousarray(np.moveaxis(np.asarray(xpos), -1, 0))
     mat = np.ascontiguousarray(np.moveaxis(np.asarray(xmat), -1, 0))
-    out = np.empty((*xpos.shape[:2], len(groups.obstacle_geoms)))
-    for j, g in enumerate(groups.obstacle_geoms.tolist()):
-        rot = np.asarray(data.geom_xmat[g]).reshape(3, 3)
-        rel = centre - np.asarray(data.geom_xpos[g])[:, None, None]
+    out = np.empty((*xpos.shape[:2], len(geometry.obstacles)))
+    for j in range(len(geometry.obstacles)):
+        rot = geometry.rot[j]
+        rel = centre - geometry.pos[j][:, None, None]
         x, y, z = (rel[0] * rot[0, c] + rel[1] * rot[1, c] + rel[2] * rot[2, c] for c in range(3))
         sdf, (ax, ay, az) = _obstacle_sdf(
-            int(model.geom_type[g]), model.geom_size[g], float(model.geom_rbound[g]), (x, y, z)
+            int(geometry.kind[j]), geometry.size[j], float(geometry.rbound[j]), (x, y, z)
         )
         outside = sdf > 0.0
         inv = 1.0 / np.where(outside, sdf, 1.0)
@@ -350,7 +394,8 @@ def clearances(
         return np.full(len(obstacles), cap)
     fromto = np.zeros(6) if fromto is None else fromto
     xpos = np.asarray(data.geom_xpos)[carried][None]
-    bounds = _bounds(model, data, groups, xpos, np.asarray(data.geom_xmat)[carried][None])[0]
+    geometry = ClearanceGeometry.of(model, data, groups)
+    bounds = _bounds(geometry, xpos, np.asarray(data.geom_xmat)[carried][None])[0]
     order = np.argsort(bounds, axis=0)
     low = np.take_along_axis(bounds, order, axis=0)
     row = _exact_row(
@@ -377,9 +422,7 @@ class ClearancePlan:
 
     Args:
         model: The model.
-        data: A data of the model, posed (``mj_kinematics``) in any state: the
-            obstacles are fixed, their poses are read from it.
-        groups: The collision groups.
+        geometry: Its clearance geometry (:meth:`ClearanceGeometry.of`).
         xpos: Centres of the carried geoms (robot and payload, in geom order)
             in N states, (N, r, 3) [m].
         xmat: Their orientations, MuJoCo's ``geom_xmat`` rows, (N, r, 9).
@@ -389,29 +432,37 @@ class ClearancePlan:
     def __init__(
         self,
         model: mujoco.MjModel,
-        data: mujoco.MjData,
-        groups: CollisionGroups,
+        geometry: ClearanceGeometry,
         xpos: FloatArray,
         xmat: FloatArray,
         cap: float = CLEARANCE_CAP_M,
     ) -> None:
-        carried = np.flatnonzero(groups.carried)
+        carried = geometry.carried
         self._model, self._cap = model, cap
-        self._geoms, self._targets = carried.tolist(), groups.obstacle_geoms.tolist()
+        self._geoms, self._targets = carried.tolist(), geometry.obstacles.tolist()
         self._fromto = np.zeros(6)
         n = len(xpos)
         if not self._targets or not self._geoms or n == 0:
             self.near: BoolArray = np.zeros(n, dtype=bool)
             return
-        bounds = _bounds(model, data, groups, xpos, xmat)  # (N, r, m)
-        self._order = np.argsort(bounds, axis=1)
-        self._low = np.take_along_axis(bounds, self._order, axis=1)
-        self.near = self._low[:, 0, :].min(axis=1) < cap
-        self._first = carried[self._order[:, 0, :]].tolist()
-        self._first_low = self._low[:, 0, :].tolist()
-        self._second_low = (
-            self._low[:, 1, :] if len(carried) > 1 else np.full_like(self._low[:, 0, :], cap)
-        ).tolist()
+        bounds = _bounds(geometry, xpos, xmat)  # (N, r, m)
+        self._bounds = bounds
+        first = bounds.argmin(axis=1)  # (N, m)
+        first_low = np.take_along_axis(bounds, first[:, None, :], axis=1)[:, 0, :]
+        self.near = first_low.min(axis=1) < cap
+        if len(carried) > 1:
+            rest = bounds.copy()
+            np.put_along_axis(rest, first[:, None, :], np.inf, axis=1)
+            second_low = rest.min(axis=1)
+        else:
+            second_low = np.full_like(first_low, cap)
+        # per state, per obstacle: (geom of smallest bound, that bound, the next bound, obstacle)
+        self._rows = [
+            list(zip(g, b0, b1, self._targets, strict=True))
+            for g, b0, b1 in zip(
+                carried[first].tolist(), first_low.tolist(), second_low.tolist(), strict=True
+            )
+        ]
 
     def fill(self, k: int, data: mujoco.MjData, row: FloatArray) -> None:
         """Write state k's clearance to each obstacle into ``row``, (m,) [m].
@@ -419,18 +470,28 @@ class ClearancePlan:
         ``data`` must be posed in state k (``mj_kinematics``); a state that is
         not ``near`` needs no call (its row is ``cap``).
         """
-        m, cap, fromto = self._model, self._cap, self._fromto
-        for j, (g, b0, b1, target) in enumerate(
-            zip(self._first[k], self._first_low[k], self._second_low[k], self._targets, strict=True)
-        ):
+        m, cap, fromto, distance = self._model, self._cap, self._fromto, mujoco.mj_geomDistance
+        out = []
+        for j, (g, b0, b1, target) in enumerate(self._rows[k]):
             if b0 >= cap:
-                row[j] = cap
+                out.append(cap)
                 continue
-            best = min(cap, mujoco.mj_geomDistance(m, data, g, target, cap, fromto))
-            if best > b1:
-                rank, bound = self._order[k, :, j].tolist(), self._low[k, :, j].tolist()
-                best = _exact_row(m, data, self._geoms, [target], [rank], [bound], cap, fromto)[0]
-            row[j] = best
+            best = distance(m, data, g, target, cap, fromto)
+            if best > b1:  # another geom may be nearer: all, in the order of their bounds
+                bound = self._bounds[k, :, j]
+                rank = np.argsort(bound)
+                best = _exact_row(
+                    m,
+                    data,
+                    self._geoms,
+                    [target],
+                    [rank.tolist()],
+                    [bound[rank].tolist()],
+                    cap,
+                    fromto,
+                )[0]
+            out.append(best if best < cap else cap)
+        row[:] = out
 
 
 def clearances_of_states(
@@ -471,7 +532,7 @@ def clearances_of_states(
         mujoco.mj_kinematics(model, data)  # the obstacles' poses
     centres = np.asarray(xpos, dtype=float).reshape(len(states), r, 3)
     axes = np.asarray(xmat, dtype=float).reshape(len(states), r, 9)
-    plan = ClearancePlan(model, data, groups, centres, axes, cap)
+    plan = ClearancePlan(model, ClearanceGeometry.of(model, data, groups), centres, axes, cap)
     for k in np.flatnonzero(plan.near).tolist():
         data.qpos[:] = states[k]
         mujoco.mj_kinematics(model, data)
@@ -574,9 +635,11 @@ class ContactTracker:
             rows = np.flatnonzero(mask)
             if len(rows) == 0:
                 continue
-            keys, first, inverse = np.unique(
-                pairs[rows], axis=0, return_index=True, return_inverse=True
+            ngeom = len(self._groups.robot)  # a pair as one integer: unique over 1-D is fast
+            codes, first, inverse = np.unique(
+                pairs[rows, 0] * ngeom + pairs[rows, 1], return_index=True, return_inverse=True
             )
+            keys = np.column_stack(np.divmod(codes, ngeom))
             worst = np.full(len(keys), -np.inf)
             np.maximum.at(worst, inverse.reshape(-1), pen[rows])
             for i in np.argsort(first, kind="stable").tolist():

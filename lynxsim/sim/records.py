@@ -20,6 +20,7 @@ import numpy.typing as npt
 
 from lynxsim.sim.collision import (
     CLEARANCE_CAP_M,
+    ClearanceGeometry,
     ClearancePlan,
     CollisionGroups,
     classify_contacts,
@@ -113,12 +114,13 @@ class StepRecords:
         step = np.repeat(np.arange(steps), np.diff(self.contact_start[: steps + 1]))
         c = classify_contacts(groups, geoms, dist)
         keep = c.obstacle | c.self_hit | c.support
-        step, pair, dist = step[keep], np.sort(geoms[keep], axis=1), dist[keep]
-        order = np.lexsort((dist, pair[:, 1], pair[:, 0], step))
-        step, pair, dist = step[order], pair[order], dist[order]
+        a, b = geoms[keep, 0], geoms[keep, 1]
+        low, high, step, dist = np.minimum(a, b), np.maximum(a, b), step[keep], dist[keep]
+        order = np.lexsort((dist, high, low, step))
+        step, low, high, dist = step[order], low[order], high[order], dist[order]
         first = np.ones(len(step), dtype=bool)
-        first[1:] = (step[1:] != step[:-1]) | (pair[1:] != pair[:-1]).any(axis=1)
-        return step[first], pair[first], dist[first]
+        first[1:] = (step[1:] != step[:-1]) | (low[1:] != low[:-1]) | (high[1:] != high[:-1])
+        return step[first], np.column_stack([low[first], high[first]]), dist[first]
 
 
 @dataclass(frozen=True)
@@ -176,6 +178,7 @@ class SensedRecorder:
         self.record = record
         self._model, self._groups, self._layout = model, groups, layout
         self._data: mujoco.MjData | None = None
+        self._geometry: ClearanceGeometry
         self._pending: SensedChunk | None = None
         self._done = 0
 
@@ -217,7 +220,8 @@ class SensedRecorder:
         model, record = self._model, self.record
         if self._data is None:  # made here: in the consumer thread, while the stepping goes on
             self._data = mujoco.MjData(model)
-            mujoco.mj_kinematics(model, self._data)  # the obstacles' poses, for the plan
+            mujoco.mj_kinematics(model, self._data)  # the obstacles' poses
+            self._geometry = ClearanceGeometry.of(model, self._data, self._groups)
         data = self._data
         sensors = self._layout.split(chunk.sensordata, next_row)
         start = self._done
@@ -226,17 +230,18 @@ class SensedRecorder:
         record.time[rows], record.qpos[rows] = chunk.time, chunk.qpos
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
         record.geom_xpos[rows], record.geom_xmat[rows] = sensors.geom_xpos, sensors.geom_xmat
-        plan = ClearancePlan(model, data, self._groups, sensors.geom_xpos, sensors.geom_xmat)
+        plan = ClearancePlan(model, self._geometry, sensors.geom_xpos, sensors.geom_xmat)
         clearance = self._clearance[rows]
         clearance[:] = CLEARANCE_CAP_M
-        gate, near = sensors.gate, plan.near
+        gate, near = sensors.gate.tolist(), plan.near.tolist()
+        qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
         # each state posed at most once, for its contacts and its clearances
-        for k in np.flatnonzero(gate | near).tolist():
-            data.qpos[:] = chunk.qpos[k]
-            mujoco.mj_kinematics(model, data)
+        for k in np.flatnonzero(sensors.gate | plan.near).tolist():
+            qpos[:] = chunk.qpos[k]
+            kinematics(model, data)
             if gate[k]:
                 record.contact_start[start + k] = record._count
-                mujoco.mj_collision(model, data)
+                collision(model, data)
                 record.add_contacts(start + k, data)
             if near[k]:
                 plan.fill(k, data, clearance[k])

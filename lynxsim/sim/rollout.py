@@ -29,7 +29,7 @@ from mujoco import rollout as native
 from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
-from lynxsim.sim.overlap import overlapped, spare_cpu
+from lynxsim.sim.overlap import cpu_count, share_stepping
 from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
 from lynxsim.sim.sensors import RecordingLayout
 
@@ -260,16 +260,24 @@ def _lagged_run(
 def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     """How a run of ``steps`` steps is stepped natively: consecutive (start, end) pairs.
 
-    Small at first (the first chunk's records wait for its stepping), then
-    ``_CHUNK_MOST`` steps each (the last chunk's records are made after all
-    stepping, so it stays short too).
+    ``_CHUNK_MOST`` steps each, but short at either end: the records of the
+    first chunk wait for its stepping, and those of the last are made after
+    all stepping.
     """
-    out, start, size = [], 0, _CHUNK_FIRST
-    while start < steps:
-        end = min(steps, start + size)
-        out.append((start, end))
-        start, size = end, min(2 * size, _CHUNK_MOST)
-    return out
+    ramp, size = [], _CHUNK_FIRST
+    while size < _CHUNK_MOST:
+        ramp.append(size)
+        size *= 2
+    middle = steps - 2 * sum(ramp)
+    if middle < 0:  # too short to ramp
+        sizes = [_CHUNK_FIRST] * (steps // _CHUNK_FIRST) + (
+            [steps % _CHUNK_FIRST] if steps % _CHUNK_FIRST else []
+        )
+    else:
+        full, rest = divmod(middle, _CHUNK_MOST)
+        sizes = [*ramp, *([_CHUNK_MOST] * full), *([rest] if rest else []), *ramp[::-1]]
+    ends = np.cumsum(sizes).tolist()
+    return list(zip([0, *ends[:-1]], ends, strict=True))
 
 
 def _native_run(
@@ -282,8 +290,8 @@ def _native_run(
 ) -> StepRecords:
     """Hold and step natively (``mujoco.rollout``), recording through the model's sensors.
 
-    The recorded steps are stepped in chunks (:func:`chunk_bounds`) in a
-    background thread where a second CPU is free, while this thread makes the
+    The recorded steps are stepped in chunks (:func:`chunk_bounds`), in a
+    helper thread where a second CPU is free, while this thread makes the
     records of the chunks already stepped (:class:`SensedRecorder`); the same
     records either way. ``data`` at rest on entry; on return it holds the last
     state (with the warnings of the whole run) and ``start`` the state the
@@ -322,7 +330,7 @@ def _native_run(
             yield SensedChunk(states[:, 0], states[:, 1 : 1 + model.nq], stepped, final)
 
     recorder = SensedRecorder(model, groups, layout, len(commands.ctrl))
-    overlapped(chunks, recorder.add, background=spare_cpu())
+    share_stepping([chunks()], recorder.add, helpers=min(1, cpu_count() - 1))
     return recorder.finish()
 
 
