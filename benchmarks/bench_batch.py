@@ -35,12 +35,18 @@ from lynxsim.traj import WAYPOINT_KINDS
 ROOT = Path(__file__).resolve().parents[1]
 REPEATS = 3
 PARTS = {
-    "native stepping (mujoco.batch)": "_step_natively",
-    "records from the sensors, touching states posed (Python)": "from_sensors",
-    "clearances (after the run)": "clearances_of_states",
-    "summaries": "summarize",
+    "native stepping (mujoco.batch)": ("batch.py", "_step_natively"),
+    "records of the stepped chunks (Python)": ("records.py", "_process"),
+    "  of which bounds of the clearances": ("collision.py", "_bounds"),
+    "  of which exact clearances (mj_geomDistance)": ("collision.py", "fill"),
+    "  of which contact lists of gated states (mj_collision)": (
+        "~",
+        "<built-in method mujoco._functions.mj_collision>",
+    ),
+    "logs (contacts classified)": ("rollout.py", "finish_log"),
+    "summaries": ("summary.py", "summarize"),
 }
-"""Where the batch's time goes: label -> profiled function name."""
+"""Where the batch's time goes: label -> profiled (file name, function name)."""
 
 
 def _median_s(fn: Callable[[], object]) -> float:
@@ -102,8 +108,12 @@ def main() -> None:
     stats = pstats.Stats(profile).stats  # type: ignore[attr-defined]
     total = sum(tt for _, _, tt, _, _ in stats.values())
     print(f"where a 1-thread batch's {total:.3f} s go (profiled):")
-    for label, name in PARTS.items():
-        cum = sum(ct for (_, _, fn), (_, _, _, ct, _) in stats.items() if fn == name)
+    for label, name in PARTS.items():  # name: (file, function)
+        cum = sum(
+            ct
+            for (path, _, fn), (_, _, _, ct, _) in stats.items()
+            if fn == name[1] and path.endswith(name[0])
+        )
         print(f"  {label:52s} {cum:7.3f} s  {cum / total:5.1%}")
 
 

@@ -1,35 +1,34 @@
-"""Many runs of one model stepped natively on a thread pool, each logged as :func:`rollout` logs it.
+"""Many runs of one model stepped natively, on every CPU, each logged as :func:`rollout` logs it.
 
-:func:`batch_rollout` plays many runs (commands of one model, any lengths) with
-:class:`mujoco.batch.Batch`, MuJoCo's own thread pool over simulations (here
-one ``MjData`` per run, so that each keeps its warning counters), and returns
-for each the :class:`~lynxsim.sim.rollout.PlaybackLog` that
+:func:`batch_rollout` plays many runs (commands of one model, any lengths) and
+returns for each the :class:`~lynxsim.sim.rollout.PlaybackLog` that
 :func:`~lynxsim.sim.rollout.rollout` gives for the same commands, bit for bit;
 :func:`~lynxsim.sim.summary.summarize` then gives the same report.
 
 What runs where:
 
-- **Native, in parallel, no Python per step:** the unrecorded hold and every
-  recorded step of every run (``mj_step``, controls from one array per run),
-  recording the time, the whole state and the recording sensors
-  (:mod:`lynxsim.sim.sensors`: tool, forces, carried geoms' poses, contacts)
-  after each step.
-  ``mujoco.batch`` is used rather than ``mujoco.rollout`` because it keeps
-  each run's warning counters (and records any ``MjData`` field, the forces
-  of a model without the sensors).
-- **Python, after the stepping, one run after the other:** the records cut
-  out of the sensors (only states with a self or table contact are posed again
-  for their contact lists; in a model without the sensors every state is posed,
-  ``mj_kinematics`` + ``mj_collision``), then
-  :func:`~lynxsim.sim.rollout.finish_log`, the very code of ``rollout``
-  (contacts classified, clearances of all states at once).
+- **Native, no Python per step:** the unrecorded hold and every recorded step
+  of every run, with :class:`mujoco.batch.Batch` (one ``MjData`` per run, so
+  that each keeps its warning counters), recording the time, the whole state
+  and the recording sensors (:mod:`lynxsim.sim.sensors`: tool, forces, carried
+  geoms' poses, the contact gate) after each step. The runs are split into one
+  group per thread, each a batch of its own stepped in time chunks
+  (:func:`~lynxsim.sim.rollout.chunk_bounds`); the groups' chunks are stepped
+  by helper threads and by the caller's thread whenever it has nothing to
+  record (:func:`~lynxsim.sim.overlap.share_stepping`), the GIL released.
+- **Python, in the caller's thread, chunk by chunk as they are stepped:** each
+  run's records (:class:`~lynxsim.sim.records.SensedRecorder`: only states the
+  gate flags are posed again for their contact lists; the clearances of every
+  state; in a model without the sensors every state is posed), then, once a
+  run is stepped, :func:`~lynxsim.sim.rollout.finish_log`, the very code of
+  ``rollout``.
 - **A run in which MuJoCo warns** (an unstable state that it resets, a full
   contact buffer) is played again by ``rollout`` alone, so that its log, cut
   where it diverged and with its warnings, is ``rollout``'s own.
 
-Runs of different lengths are neither padded nor grouped: all runs step
-together, one native call per distinct length, and a run leaves the batch once
-its steps are done (no step is simulated that a log does not keep).
+Runs of different lengths are neither padded nor grouped by length: a run
+leaves its group's batch once its steps are done (no step is simulated that a
+log does not keep).
 """
 
 from __future__ import annotations
@@ -121,7 +120,8 @@ def batch_rollout(
         model: The model of every run.
         binding: What to drive and watch.
         runs: The runs.
-        nthread: Threads stepping the runs, the caller's included (None: one per CPU).
+        nthread: Threads to use, the caller's included (None: one per CPU);
+            the caller's thread records, and steps when it has nothing to record.
         settle_s: Hold time after each trajectory [s].
         presettle_s: Hold time before it, unrecorded [s].
 
@@ -347,7 +347,7 @@ def play_arm_batch(
         settle_s: Hold time after each trajectory [s].
         gripper_cmds: Gripper opening [m] over trajectory time [s], one per
             trajectory (None: no gripper command in any run).
-        nthread: Threads stepping the runs (None: one per CPU).
+        nthread: Threads to use, the caller's included (None: one per CPU).
 
     Returns:
         One :class:`~lynxsim.sim.summary.Playback` per trajectory, in order.

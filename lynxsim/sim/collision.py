@@ -351,7 +351,6 @@ def _exact_row(
     order: list[list[int]],
     bound: list[list[float]],
     cap: float,
-    fromto: FloatArray,
 ) -> list[float]:
     """Exact clearance to each obstacle of the posed ``data``, (m,) [m].
 
@@ -365,7 +364,7 @@ def _exact_row(
         for i, b in zip(rank, low, strict=True):
             if b >= best:
                 break
-            best = min(best, mujoco.mj_geomDistance(model, data, geoms[i], obstacle, best, fromto))
+            best = min(best, mujoco.mj_geomDistance(model, data, geoms[i], obstacle, best, None))
         out.append(best)
     return out
 
@@ -375,8 +374,6 @@ def clearances(
     data: mujoco.MjData,
     groups: CollisionGroups,
     cap: float = CLEARANCE_CAP_M,
-    fromto: FloatArray | None = None,
-    boxes: tuple[FloatArray, FloatArray] | None = None,
 ) -> FloatArray:
     """Smallest signed distance from the robot and payload to each obstacle [m], (m,).
 
@@ -385,14 +382,12 @@ def clearances(
     (``mj_geomDistance``) are computed in the order of that bound until the next
     bound reaches the best distance found, so geoms far from an obstacle cost
     nothing. Distances of ``cap`` or more read as ``cap``. Needs the geom poses
-    of ``data`` (``mj_kinematics``). ``boxes`` is not used any more (the bounds
-    need each obstacle's shape, read from ``data``); it stays for existing calls.
+    of ``data`` (``mj_kinematics``).
     """
     obstacles = groups.obstacle_geoms
     carried = np.flatnonzero(groups.carried)
     if len(obstacles) == 0 or len(carried) == 0:
         return np.full(len(obstacles), cap)
-    fromto = np.zeros(6) if fromto is None else fromto
     xpos = np.asarray(data.geom_xpos)[carried][None]
     geometry = ClearanceGeometry.of(model, data, groups)
     bounds = _bounds(geometry, xpos, np.asarray(data.geom_xmat)[carried][None])[0]
@@ -406,7 +401,6 @@ def clearances(
         order.T.tolist(),
         low.T.tolist(),
         cap,
-        fromto,
     )
     return np.array(row, dtype=float)
 
@@ -440,7 +434,6 @@ class ClearancePlan:
         carried = geometry.carried
         self._model, self._cap = model, cap
         self._geoms, self._targets = carried.tolist(), geometry.obstacles.tolist()
-        self._fromto = np.zeros(6)
         n = len(xpos)
         if not self._targets or not self._geoms or n == 0:
             self.near: BoolArray = np.zeros(n, dtype=bool)
@@ -470,13 +463,13 @@ class ClearancePlan:
         ``data`` must be posed in state k (``mj_kinematics``); a state that is
         not ``near`` needs no call (its row is ``cap``).
         """
-        m, cap, fromto, distance = self._model, self._cap, self._fromto, mujoco.mj_geomDistance
+        m, cap, distance = self._model, self._cap, mujoco.mj_geomDistance
         out = []
         for j, (g, b0, b1, target) in enumerate(self._rows[k]):
             if b0 >= cap:
                 out.append(cap)
                 continue
-            best = distance(m, data, g, target, cap, fromto)
+            best = distance(m, data, g, target, cap, None)
             if best > b1:  # another geom may be nearer: all, in the order of their bounds
                 bound = self._bounds[k, :, j]
                 rank = np.argsort(bound)
@@ -488,7 +481,6 @@ class ClearancePlan:
                     [rank.tolist()],
                     [bound[rank].tolist()],
                     cap,
-                    fromto,
                 )[0]
             out.append(best if best < cap else cap)
         row[:] = out

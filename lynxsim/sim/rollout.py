@@ -5,13 +5,15 @@ step) and gives the commanded tool point of each sample; :func:`rollout`
 steps MuJoCo and records, per step, the whole state, the commanded and actual
 joints, the tool site, actuator forces, the contacts that count
 (:mod:`lynxsim.sim.collision`, one row per touching pair and step) and the
-clearance to each obstacle, into preallocated arrays; the contacts are
-classified and the clearances computed once the run is over, for all steps at
-once. In a scene compiled with the recording sensors
+clearance to each obstacle, into preallocated arrays
+(:mod:`lynxsim.sim.records`). In a scene compiled with the recording sensors
 (:mod:`lynxsim.sim.sensors`) a run without a step hook is stepped natively
-(``mujoco.rollout``, no Python per step) and its records read from
-``sensordata``; otherwise a Python loop records each step from ``MjData``. The
-two give the same log, bit for bit. The verdicts and figures come from
+(``mujoco.rollout``, no Python per step) in chunks, on a helper thread where a
+second CPU is free, while the caller's thread makes the records of the chunks
+already stepped from ``sensordata`` (contacts of the states the gate flags,
+clearances of all); otherwise a Python loop records each step from ``MjData``
+and the clearances are computed once the run is over. Every way gives the same
+log, bit for bit. The verdicts and figures come from
 :func:`lynxsim.sim.summary.summarize`; videos from
 :func:`lynxsim.sim.recording.render_log`.
 """

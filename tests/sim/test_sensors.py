@@ -104,3 +104,25 @@ def test_a_scene_whose_parts_have_no_names_gets_no_sensors():
     assert out is unnamed
     assert RecordingLayout.of(out, arm_binding(out)) is None
     assert RecordingLayout.of(model, arm_binding(model)) is None  # compiled before any sensor
+
+
+def test_a_robot_subtree_holding_a_colliding_geom_of_no_group_gets_no_sensors():
+    """The gate counts contacts per robot subtree: a foreign colliding geom there would pass."""
+    spec = load_arm_spec(THREE_OBSTACLES.scene)
+    plain = spec.compile()
+    forearm = plain.body(int(plain.geom("forearm_collision").bodyid[0])).name
+    extra = spec.body(forearm).add_geom()
+    extra.name, extra.type, extra.size = "lamp", mujoco.mjtGeom.mjGEOM_SPHERE, [0.01, 0, 0]
+    extra.group, extra.contype, extra.conaffinity = 0, 1, 1  # colliding, not in the robot's group
+    model = spec.compile()
+    binding = arm_binding(model)
+    assert not binding.groups.carried[model.geom("lamp").id]
+    assert add_recording_sensors(spec, model, binding) is model
+    extra.contype = extra.conaffinity = 0  # a visual geom: the subtree is the robot's again
+    model = spec.compile()
+    assert (
+        RecordingLayout.of(
+            add_recording_sensors(spec, model, arm_binding(model)), arm_binding(model)
+        )
+        is not None
+    )
