@@ -145,16 +145,16 @@ class SensedRecorder:
     """Builds a run's :class:`StepRecords` from its natively stepped chunks, in order.
 
     A state's position-stage sensors are read from the next step's row (a
-    step's forward pass sees the state it starts from), so the steps of a chunk
-    are processed as it arrives but its last, which waits for the next chunk
-    (the run's last chunk comes with ``final``): their records
-    cut out of the sensors (:meth:`RecordingLayout.split`), the states the
-    contact gate flags posed again (``mj_kinematics`` + ``mj_collision``) for
-    their contact lists, and its clearances computed
+    step's forward pass sees the state it starts from), so a chunk's steps are
+    processed as it arrives but for its last, which waits for the next chunk
+    (the run's last chunk comes with ``final``). Processing cuts the records
+    out of the sensors (:meth:`RecordingLayout.split`), poses the states the
+    contact gate flags again (``mj_kinematics`` + ``mj_collision``) for their
+    contact lists and computes every state's clearances
     (:class:`~lynxsim.sim.collision.ClearancePlan`, as
-    :func:`~lynxsim.sim.collision.clearances_of_states` computes them), each
-    state posed at most once for both. Each state's records
-    are those a Python loop takes from ``MjData``, bit for bit.
+    :func:`~lynxsim.sim.collision.clearances_of_states` does), each state
+    posed at most once for both. Each state's records are those a Python loop
+    takes from ``MjData``, bit for bit.
 
     Args:
         model: The model (with the recording sensors).
