@@ -319,25 +319,23 @@ def _bounds(geometry: ClearanceGeometry, xpos: FloatArray, xmat: FloatArray) -> 
         xmat: Their orientations (rows of MuJoCo's ``geom_xmat``), (N, r, 9).
     """
     extent, reach = geometry.extent, geometry.reach
-    # One contiguous array per coordinate and per geom_xmat entry, each (N, r):
-    # a handful of elementwise passes instead of small batched products.
-    centre = np.ascontiguousarray(np.moveaxis(np.asarray(xpos), -1, 0))
-    mat = np.ascontiguousarray(np.moveaxis(np.asarray(xmat), -1, 0))
+    # Coordinates first, (3, N, r), and geom_xmat as (row i, column a, N, r):
+    # whole-array passes, the 3x3 products as tensordot over the first axis.
+    centre = np.moveaxis(np.asarray(xpos), -1, 0)
+    mat = np.ascontiguousarray(np.moveaxis(np.asarray(xmat), -1, 0)).reshape(3, 3, *xpos.shape[:2])
+    scale = extent.T[:, None, :]  # (3, 1, r): the extent along each geom axis
     out = np.empty((*xpos.shape[:2], len(geometry.obstacles)))
     for j in range(len(geometry.obstacles)):
         rot = geometry.rot[j]
-        rel = centre - geometry.pos[j][:, None, None]
-        x, y, z = (rel[0] * rot[0, c] + rel[1] * rot[1, c] + rel[2] * rot[2, c] for c in range(3))
-        sdf, (ax, ay, az) = _obstacle_sdf(
-            int(geometry.kind[j]), geometry.size[j], float(geometry.rbound[j]), (x, y, z)
+        local = np.tensordot(rot, centre - geometry.pos[j][:, None, None], axes=([0], [0]))
+        sdf, away = _obstacle_sdf(
+            int(geometry.kind[j]), geometry.size[j], float(geometry.rbound[j]), tuple(local)
         )
         outside = sdf > 0.0
-        inv = 1.0 / np.where(outside, sdf, 1.0)
-        # the unit direction out of the obstacle, world frame
-        nx, ny, nz = ((ax * rot[i, 0] + ay * rot[i, 1] + az * rot[i, 2]) * inv for i in range(3))
-        towards = np.broadcast_to(reach[:, 0], sdf.shape).copy()
-        for a in range(3):  # extent along geom axis a times |n . axis a|
-            towards += extent[:, a] * np.abs(nx * mat[a] + ny * mat[3 + a] + nz * mat[6 + a])
+        # the unit direction out of the obstacle, world frame, (3, N, r)
+        n = np.tensordot(rot, np.stack(away), axes=([1], [0])) / np.where(outside, sdf, 1.0)
+        proj = np.abs((n[:, None] * mat).sum(axis=0))  # |n . axis a|, (3, N, r)
+        towards = (proj * scale).sum(axis=0) + reach[:, 0]
         np.minimum(towards, reach[:, 1], out=towards)
         out[..., j] = sdf - np.where(outside, towards, reach[:, 1])
     return out
@@ -409,7 +407,7 @@ class ClearancePlan:
     """How to get the exact clearances of many states: bounds first, then a few exact distances.
 
     The bounds of every state come from the carried geoms' poses given, in one
-    vectorised pass (:func:`_bounds`); :meth:`fill` then computes one posed
+    vectorised pass (:func:`_bounds`); :meth:`row` then computes one posed
     state's row exactly, starting with the pair of smallest bound (most often
     the nearest: one ``mj_geomDistance`` per obstacle). States whose every
     bound is at least ``cap`` read ``cap`` and need not be posed (``near``).
@@ -457,8 +455,8 @@ class ClearancePlan:
             )
         ]
 
-    def fill(self, k: int, data: mujoco.MjData, row: FloatArray) -> None:
-        """Write state k's clearance to each obstacle into ``row``, (m,) [m].
+    def row(self, k: int, data: mujoco.MjData) -> list[float]:
+        """State k's clearance to each obstacle, (m,) [m].
 
         ``data`` must be posed in state k (``mj_kinematics``); a state that is
         not ``near`` needs no call (its row is ``cap``).
@@ -470,20 +468,15 @@ class ClearancePlan:
                 out.append(cap)
                 continue
             best = distance(m, data, g, target, cap, None)
-            if best > b1:  # another geom may be nearer: all, in the order of their bounds
+            if best > b1:  # another geom may be nearer: the others, in the order of their bounds
                 bound = self._bounds[k, :, j]
-                rank = np.argsort(bound)
-                best = _exact_row(
-                    m,
-                    data,
-                    self._geoms,
-                    [target],
-                    [rank.tolist()],
-                    [bound[rank].tolist()],
-                    cap,
-                )[0]
+                for i in np.argsort(bound).tolist():
+                    if bound[i] >= best:
+                        break
+                    if self._geoms[i] != g:
+                        best = min(best, distance(m, data, self._geoms[i], target, best, None))
             out.append(best if best < cap else cap)
-        row[:] = out
+        return out
 
 
 def clearances_of_states(
@@ -525,10 +518,14 @@ def clearances_of_states(
     centres = np.asarray(xpos, dtype=float).reshape(len(states), r, 3)
     axes = np.asarray(xmat, dtype=float).reshape(len(states), r, 9)
     plan = ClearancePlan(model, ClearanceGeometry.of(model, data, groups), centres, axes, cap)
-    for k in np.flatnonzero(plan.near).tolist():
+    near = np.flatnonzero(plan.near)
+    rows = []
+    for k in near.tolist():
         data.qpos[:] = states[k]
         mujoco.mj_kinematics(model, data)
-        plan.fill(k, data, out[k])
+        rows.append(plan.row(k, data))
+    if rows:
+        out[near] = rows
     return out
 
 

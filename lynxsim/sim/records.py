@@ -231,10 +231,9 @@ class SensedRecorder:
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
         record.geom_xpos[rows], record.geom_xmat[rows] = sensors.geom_xpos, sensors.geom_xmat
         plan = ClearancePlan(model, self._geometry, sensors.geom_xpos, sensors.geom_xmat)
-        clearance = self._clearance[rows]
-        clearance[:] = CLEARANCE_CAP_M
         gate, near = sensors.gate.tolist(), plan.near.tolist()
         qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
+        exact = []
         # each state posed at most once, for its contacts and its clearances
         for k in np.flatnonzero(sensors.gate | plan.near).tolist():
             qpos[:] = chunk.qpos[k]
@@ -244,6 +243,10 @@ class SensedRecorder:
                 collision(model, data)
                 record.add_contacts(start + k, data)
             if near[k]:
-                plan.fill(k, data, clearance[k])
+                exact.append(plan.row(k, data))
+        clearance = self._clearance[rows]
+        clearance[:] = CLEARANCE_CAP_M
+        if exact:
+            clearance[plan.near] = exact
         record.contact_start[end] = record._count
         self._done = end
