@@ -1,7 +1,8 @@
 """Sensors that let MuJoCo record a run natively: what a playback reads from ``sensordata``.
 
 A playback records, per step, the tool site, the actuator forces, the pose of
-every carried geom (robot and payload: the clearance bounds need them) and
+every carried geom (robot and payload: the clearance bounds need them; none
+in a scene without obstacles) and
 whether any contact that may count (:mod:`lynxsim.sim.collision`) exists.
 :func:`add_recording_sensors` compiles those as MuJoCo sensors into a scene, so
 that ``mujoco.rollout`` or ``mujoco.batch`` record them with no Python per
@@ -82,10 +83,15 @@ def _robot_roots(model: mujoco.MjModel, binding: RobotBinding) -> list[int] | No
 def _names(
     model: mujoco.MjModel, binding: RobotBinding, roots: list[int]
 ) -> tuple[list[str], list[str], list[str]]:
-    """Carried geoms, robot subtree roots and payload bodies by name ("" where unnamed)."""
+    """Carried geoms, robot subtree roots and payload bodies by name ("" where unnamed).
+
+    The carried geoms' poses serve the clearance bounds only: a scene without
+    obstacles records none.
+    """
     groups = binding.groups
     body_of = np.asarray(model.geom_bodyid)
-    carried = [model.geom(int(g)).name for g in np.flatnonzero(groups.carried)]
+    posed = np.flatnonzero(groups.carried).tolist() if len(groups.obstacle_geoms) else []
+    carried = [model.geom(g).name for g in posed]
     payload = sorted(set(body_of[groups.payload].tolist()))
     return (
         carried,

@@ -9,6 +9,7 @@ the states with a contact that counts (obstacle, self or table hit).
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import mujoco
@@ -126,3 +127,21 @@ def test_a_robot_subtree_holding_a_colliding_geom_of_no_group_gets_no_sensors():
         )
         is not None
     )
+
+
+def test_a_scene_without_obstacles_records_no_geom_poses_and_the_same_log():
+    """Geom poses serve the clearance bounds only: none are sensed where nothing is to clear."""
+    task = THREE_OBSTACLES
+    bare_scene = dataclasses.replace(task.scene, obstacles=())
+    model = load_arm_scene(bare_scene)
+    layout = RecordingLayout.of(model, arm_binding(model))
+    assert layout is not None
+    assert layout.geom_pos.size == 0
+    assert layout.geom_mat.size == 0
+    trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
+    sensed = play_arm(model, trajectory, task=task.name)
+    looped = play_arm(load_arm_spec(bare_scene).compile(), trajectory, task=task.name)
+    assert sensed.report == looped.report
+    assert sensed.log.clearance_m.shape == (len(sensed.log.time_s), 0)
+    for name in ("qpos", "tool", "force", "contact_step", "contact_geoms", "contact_dist"):
+        np.testing.assert_array_equal(getattr(sensed.log, name), getattr(looped.log, name))
