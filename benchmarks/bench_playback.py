@@ -3,7 +3,8 @@
 Run: ``python benchmarks/bench_playback.py``.
 
 * Playback time per physics step of quintic runs without rendering (contacts,
-  clearance to every obstacle and logging every step, the report included),
+  clearance to every obstacle and logging every step, the report included;
+  wall time, and the CPU time of both threads where a helper thread steps),
   beside the physics alone in the same run, on the same scene compiled without
   the recording sensors (:mod:`lynxsim.sim.sensors`): the same controls stepped
   natively (``mujoco.rollout``, no Python per step: the bare physics), and set
@@ -82,18 +83,20 @@ def playback_rtf() -> None:
         model = load_arm_scene(built)
         plain = load_arm_spec(built).compile()  # the same scene without the recording sensors
         q_cmd = trajectory.sample(physics_grid(trajectory.duration, model.opt.timestep)).q
-        walls, loops, natives = [], [], []
+        walls, cpus, loops, natives = [], [], [], []
         for _ in range(REPEATS):
-            start = time.perf_counter()
+            start, cpu = time.perf_counter(), time.process_time()
             playback = play_arm(model, trajectory, task=task.name)
             walls.append(time.perf_counter() - start)
+            cpus.append(time.process_time() - cpu)
             loop, native = _physics_alone(plain, q_cmd, playback.log.steps)
             loops.append(loop)
             natives.append(native)
         steps = playback.log.steps + round(PRESETTLE_S / model.opt.timestep)
-        wall, loop, native = min(walls), min(loops), min(natives)
+        wall, cpu, loop, native = min(walls), min(cpus), min(loops), min(natives)
         print(
-            f"playback ({label:27s}): {wall / steps * 1e6:5.1f} us/step; physics alone "
+            f"playback ({label:27s}): {wall / steps * 1e6:5.1f} us/step "
+            f"(CPU {cpu / steps * 1e6:5.1f}, both threads); physics alone "
             f"{native / steps * 1e6:5.1f} us/step native, {loop / steps * 1e6:5.1f} us/step "
             f"in a Python loop; speed ratio {native / wall:.2f} of native, "
             f"{loop / wall:.2f} of the loop ({steps} steps)"
