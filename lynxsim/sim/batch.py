@@ -69,8 +69,6 @@ _TIME = mujoco.mjtState.mjSTATE_TIME
 _RECORD = (_TIME, "qpos", "actuator_force")
 """What the native stepping records after each step (models without recording sensors)."""
 _SENSED = (_TIME, "qpos", "sensordata")
-_SOURCES_PER_THREAD = 1
-"""Runs are stepped in this many independent groups per thread (each a batch of its own)."""
 """What it records in a model with recording sensors (:mod:`lynxsim.sim.sensors`)."""
 
 
@@ -197,7 +195,7 @@ def batch_rollout(
             diverged_at_s=None,
         )
 
-    count = min(len(commands), _SOURCES_PER_THREAD * threads) if threads > 1 else 1
+    count = min(len(commands), threads)  # groups: one per thread (measured better than 2 or 3)
     sources = [
         _stepped(model, binding, commands, list(range(g, len(commands), count)), layout is None)
         for g in range(count)
