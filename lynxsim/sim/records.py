@@ -78,8 +78,14 @@ class StepRecords:
         self.add_contacts(k, data)
 
     def add_contacts(self, k: int, data: mujoco.MjData) -> None:
-        """Record the contacts in ``data`` as step k's (steps in order; none skipped after k)."""
+        """Record the contacts in ``data`` as step k's (steps in order).
+
+        Steps skipped in between have no contact once ``contact_start`` is
+        carried forward (``np.maximum.accumulate``); steps after k none
+        until they are added.
+        """
         n, p = data.ncon, self._count
+        self.contact_start[k] = p
         if n:
             if p + n > len(self._dist):
                 grow = max(n, len(self._dist))
@@ -239,7 +245,6 @@ class SensedRecorder:
             qpos[:] = chunk.qpos[k]
             kinematics(model, data)
             if gate[k]:
-                record.contact_start[start + k] = record._count
                 collision(model, data)
                 record.add_contacts(start + k, data)
             if near[k]:
@@ -248,5 +253,4 @@ class SensedRecorder:
         clearance[:] = CLEARANCE_CAP_M
         if exact:
             clearance[plan.near] = exact
-        record.contact_start[end] = record._count
         self._done = end
