@@ -11,7 +11,6 @@ encoded while the next is drawn (:func:`~lynxsim.sim.video.mp4_writer`).
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
 
 import mujoco
 import numpy as np
@@ -19,12 +18,11 @@ import numpy.typing as npt
 
 from lynxsim.sim.collision import classify_contacts
 from lynxsim.sim.render import Overlay, PathTrace, RenderSettings, SceneRenderer
-from lynxsim.sim.rollout import PlaybackLog, StepHook
+from lynxsim.sim.rollout import PlaybackLog, ProgressFn, StepHook
 from lynxsim.sim.video import mp4_writer
 
 __all__ = ["ProgressFn", "frame_steps", "progress_hook", "render_log", "split_progress"]
 
-ProgressFn = Callable[[float], None]
 """Called with the fraction of a run done, 0..1."""
 
 

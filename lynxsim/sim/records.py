@@ -210,6 +210,11 @@ class SensedRecorder:
             )
         self._pending = SensedChunk(chunk.time[last:], chunk.qpos[last:], chunk.sensordata[last:])
 
+    @property
+    def done(self) -> int:
+        """Steps whose records are made."""
+        return self._done
+
     def finish(self) -> StepRecords:
         """The records, once the last chunk (the one with ``final``) was added.
 

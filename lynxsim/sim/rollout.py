@@ -39,6 +39,7 @@ __all__ = [
     "RANGE_TOL",
     "LogMeta",
     "PlaybackLog",
+    "ProgressFn",
     "RunCommands",
     "StepHook",
     "chunk_bounds",
@@ -54,6 +55,12 @@ IntArray = npt.NDArray[np.intp]
 
 StepHook = Callable[[int, mujoco.MjData], None]
 """Called after each recorded physics step with (step index, data)."""
+
+ProgressFn = Callable[[float], None]
+"""Called with the fraction of some work done, 0..1."""
+
+_PROGRESS_EVERY = 0.05
+"""A Python-loop run reports its progress about every this fraction of its steps."""
 
 _CHUNK_FIRST = 32
 _CHUNK_MOST = 128
@@ -214,6 +221,7 @@ def _fresh_run(
     ctrl: FloatArray,
     record: StepRecords,
     on_step: StepHook | None,
+    progress: ProgressFn | None,
 ) -> int:
     """Step with the positions and contacts brought to each new state (for a hook that reads them).
 
@@ -221,6 +229,7 @@ def _fresh_run(
         How many steps were recorded (fewer than ``len(ctrl)`` if the state diverged).
     """
     qpos, qvel = data.qpos, data.qvel
+    every = _report_every(len(ctrl), progress)
     for k in range(len(ctrl)):
         data.ctrl[ctrl_adr] = ctrl[k]
         mujoco.mj_step(model, data)
@@ -230,7 +239,14 @@ def _fresh_run(
         record.pose(k, model, data)
         if on_step is not None:
             on_step(k, data)
+        if progress is not None and k % every == 0:
+            progress(k / len(ctrl))
     return len(ctrl)
+
+
+def _report_every(steps: int, progress: ProgressFn | None) -> int:
+    """Steps between progress reports of a Python-loop run (never, without a callback)."""
+    return max(1, round(_PROGRESS_EVERY * steps)) if progress is not None else steps + 1
 
 
 def _lagged_run(
@@ -239,6 +255,7 @@ def _lagged_run(
     ctrl_adr: IntArray,
     ctrl: FloatArray,
     record: StepRecords,
+    progress: ProgressFn | None,
 ) -> None:
     """Step, taking each state's positions and contacts from the next step's own forward pass.
 
@@ -250,12 +267,15 @@ def _lagged_run(
     ``mj_step`` finds it (and resets, with a warning), which the caller checks.
     """
     step, state, positions = mujoco.mj_step, record.state, record.positions
+    every = _report_every(len(ctrl), progress)
     for k in range(len(ctrl)):
         data.ctrl[ctrl_adr] = ctrl[k]
         step(model, data)
         if k:
             positions(k - 1, data)
         state(k, data)
+        if progress is not None and k % every == 0:
+            progress(k / len(ctrl))
     record.pose(len(ctrl) - 1, model, data)
 
 
@@ -289,6 +309,7 @@ def _native_run(
     commands: RunCommands,
     layout: RecordingLayout,
     groups: CollisionGroups,
+    progress: ProgressFn | None,
 ) -> StepRecords:
     """Hold and step natively (``mujoco.rollout``), recording through the model's sensors.
 
@@ -297,7 +318,7 @@ def _native_run(
     records of the chunks already stepped (:class:`SensedRecorder`); the same
     records either way. ``data`` at rest on entry; on return it holds the last
     state (with the warnings of the whole run) and ``start`` the state the
-    record starts from.
+    record starts from. ``progress`` hears of each chunk recorded.
     """
     full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     state = np.empty(mujoco.mj_stateSize(model, full))
@@ -332,7 +353,13 @@ def _native_run(
             yield SensedChunk(states[:, 0], states[:, 1 : 1 + model.nq], stepped, final)
 
     recorder = SensedRecorder(model, groups, layout, len(commands.ctrl))
-    share_stepping([chunks()], recorder.add, helpers=min(1, cpu_count() - 1))
+
+    def record(chunk: SensedChunk) -> None:
+        recorder.add(chunk)
+        if progress is not None:
+            progress(recorder.done / len(commands.ctrl))
+
+    share_stepping([chunks()], record, helpers=min(1, cpu_count() - 1))
     return recorder.finish()
 
 
@@ -509,6 +536,7 @@ def rollout(
     presettle_s: float = 0.5,
     gripper_cmd: Callable[[float], float] | None = None,
     on_step: StepHook | None = None,
+    progress: ProgressFn | None = None,
 ) -> PlaybackLog:
     """Play commanded joints sampled at every physics step and record what happened.
 
@@ -535,8 +563,11 @@ def rollout(
         presettle_s: Hold time before it, unrecorded [s].
         gripper_cmd: Gripper opening [m] as a function of time [s], from
             ``-presettle_s`` to the end of the settling.
-        on_step: Called after every recorded step (robot monitors, progress),
-            with the positions and contacts of the new state in ``data``.
+        on_step: Called after every recorded step (robot monitors), with the
+            positions and contacts of the new state in ``data`` (the run then
+            steps in a Python loop).
+        progress: Called with the fraction of the recorded steps done, now
+            and then (each native chunk, or about every 5 % of the steps).
 
     Returns:
         The :class:`PlaybackLog`.
@@ -561,7 +592,7 @@ def rollout(
     start = _Snapshot(model) if on_step is None else None
     record: StepRecords | None = None
     if layout is not None and start is not None:
-        record = _native_run(model, data, start, commands, layout, binding.groups)
+        record = _native_run(model, data, start, commands, layout, binding.groups, progress)
     else:
         for hold in commands.hold:
             data.ctrl[ctrl_adr] = hold
@@ -570,7 +601,7 @@ def rollout(
         if start is not None:
             start.take(model, data)
             record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
-            _lagged_run(model, data, ctrl_adr, ctrl, record)
+            _lagged_run(model, data, ctrl_adr, ctrl, record, progress)
     recorded = steps
     clock = np.cumsum(np.full(steps, float(model.opt.timestep)))  # data.time: dt added per step
     finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
@@ -581,7 +612,7 @@ def rollout(
         if start is not None:
             start.restore(model, data)
         record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
-        recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step)
+        recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step, progress)
     return finish_log(
         model,
         binding,

@@ -112,3 +112,36 @@ def test_chunks_cover_the_run_in_order_short_at_either_end(steps):
     assert sizes[0] <= rollout_module._CHUNK_FIRST
     if steps >= 4 * rollout_module._CHUNK_MOST:
         assert sizes[-1] == rollout_module._CHUNK_FIRST
+
+
+def test_progress_is_heard_per_native_chunk_and_changes_nothing():
+    """A progress bar keeps the native path: one report per chunk, the same log."""
+    task = THREE_OBSTACLES
+    trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
+    model = load_arm_scene(task.scene)
+    heard: list[float] = []
+    with_bar = play_arm(model, trajectory, task=task.name, progress=heard.append)
+    without = play_arm(model, trajectory, task=task.name)
+    assert len(heard) == len(chunk_bounds(with_bar.log.steps))
+    assert heard == sorted(heard)
+    assert heard[-1] == 1.0
+    assert with_bar.report == without.report
+    np.testing.assert_array_equal(with_bar.log.qpos, without.log.qpos)
+    np.testing.assert_array_equal(with_bar.log.clearance_m, without.log.clearance_m)
+
+
+def test_a_python_loop_run_reports_progress_too():
+    """A step hook sends the run through the Python loop; its progress still comes, rising."""
+    task = THREE_OBSTACLES
+    trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
+    heard: list[float] = []
+    play_arm(
+        load_arm_scene(task.scene),
+        trajectory,
+        task=task.name,
+        on_step=lambda k, data: None,
+        progress=heard.append,
+    )
+    assert 15 <= len(heard) <= 25  # about every 5 %
+    assert heard == sorted(heard)
+    assert heard[0] == 0.0

@@ -12,7 +12,7 @@ from lynxsim.arm import tool_pose
 from lynxsim.sim.arm.model import SceneIds
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionChecker
-from lynxsim.sim.rollout import StepHook, rollout
+from lynxsim.sim.rollout import ProgressFn, StepHook, rollout
 from lynxsim.sim.summary import Playback, summarize
 from lynxsim.traj import Trajectory
 
@@ -57,6 +57,7 @@ def play_arm(
     settle_s: float = 0.5,
     gripper_cmd: Callable[[float], float] | None = None,
     on_step: StepHook | None = None,
+    progress: ProgressFn | None = None,
 ) -> Playback:
     """Play an arm trajectory through the position actuators, targets updated every step.
 
@@ -69,7 +70,9 @@ def play_arm(
         data: Data to use (a new one if None).
         settle_s: Hold time after the trajectory [s].
         gripper_cmd: Gripper opening [m] over trajectory time [s].
-        on_step: Called after every physics step (progress).
+        on_step: Called after every physics step (a monitor; the run then
+            steps in a Python loop).
+        progress: Called with the fraction of the stepping done, now and then.
 
     Returns:
         The :class:`~lynxsim.sim.summary.Playback` (report and log).
@@ -88,5 +91,6 @@ def play_arm(
         settle_s=settle_s,
         gripper_cmd=gripper_cmd,
         on_step=on_step,
+        progress=progress,
     )
     return Playback(report=summarize(log), log=log)

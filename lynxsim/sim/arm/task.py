@@ -10,7 +10,7 @@ import numpy as np
 from lynxsim.scene import REPORT_SCENE, Scene
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
-from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
+from lynxsim.sim.recording import ProgressFn, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.summary import Playback
 from lynxsim.traj import Trajectory
@@ -75,7 +75,7 @@ def run_arm_trajectory(
         task=task,
         settle_s=settle_s,
         gripper_cmd=None if scene.cube is None else pick_and_place_gripper(trajectory.duration),
-        on_step=progress_hook(trajectory.duration + settle_s, float(model.opt.timestep), stepping),
+        progress=stepping,
     )
     if video is not None:
         targets = np.array([p.position for p in trajectory.waypoints.poses])
