@@ -4,7 +4,8 @@ Run: ``python benchmarks/bench_batch.py``.
 
 The same runs (every shipped arm task with every waypoint trajectory type, the
 gripper scheduled where the scene has a cube, reports included) are played in
-one process as (a) a loop of :func:`~lynxsim.sim.arm.playback.play_arm`,
+one process as (a) a loop of :func:`~lynxsim.sim.arm.playback.play_arm`
+(each on two threads where it can; (a') again bound to one CPU),
 (b) :func:`~lynxsim.sim.batch.play_arm_batch` on one thread, (c) on two; the
 wall times (medians) and their ratios are printed, then where the batch's time
 goes (one profiled batch on one thread). Issue 12's targets: (c) >= 1.8x (b),
@@ -38,7 +39,7 @@ PARTS = {
     "native stepping (mujoco.batch)": ("batch.py", "_step_natively"),
     "records of the stepped chunks (Python)": ("records.py", "_process"),
     "  of which bounds of the clearances": ("collision.py", "_bounds"),
-    "  of which exact clearances (mj_geomDistance)": ("collision.py", "fill"),
+    "  of which exact clearances (mj_geomDistance)": ("collision.py", "row"),
     "  of which contact lists of gated states (mj_collision)": (
         "~",
         "<built-in method mujoco._functions.mj_collision>",
@@ -56,6 +57,18 @@ def _median_s(fn: Callable[[], object]) -> float:
         fn()
         times.append(time.perf_counter() - start)
     return statistics.median(times)
+
+
+def _on_one_cpu(fn: Callable[[], float]) -> float | None:
+    """``fn()`` with this process bound to one CPU (None where affinity cannot be set)."""
+    if not hasattr(os, "sched_setaffinity"):
+        return None
+    cpus = os.sched_getaffinity(0)
+    os.sched_setaffinity(0, {min(cpus)})
+    try:
+        return fn()
+    finally:
+        os.sched_setaffinity(0, cpus)
 
 
 def main() -> None:
@@ -93,15 +106,23 @@ def main() -> None:
     for nthread in (1, 2):
         assert [p.report for p in batch(nthread)] == [p.report for p in reference]
     t_loop = _median_s(loop)
+    t_alone = _on_one_cpu(lambda: _median_s(loop))
     t_one = _median_s(lambda: batch(1))
     t_two = _median_s(lambda: batch(2))
     print(f"{runs} runs, {steps} recorded steps, {os.cpu_count()} CPUs, medians of {REPEATS}")
     print(f"  (a) loop of play_arm     {t_loop:7.3f} s  {t_loop / steps * 1e6:6.1f} us/step")
+    if t_alone is not None:
+        print(
+            f"  (a') the loop on 1 CPU   {t_alone:7.3f} s  {t_alone / steps * 1e6:6.1f} us/step"
+            "  (no helper thread)"
+        )
     print(f"  (b) batch, 1 thread      {t_one:7.3f} s  {t_one / steps * 1e6:6.1f} us/step")
     print(f"  (c) batch, 2 threads     {t_two:7.3f} s  {t_two / steps * 1e6:6.1f} us/step")
     print(f"  2 threads / 1 thread: {t_one / t_two:.2f}x (target >= 1.8x)")
     print(f"  batch (2 threads) / loop: {t_loop / t_two:.2f}x (target >= 5x)")
     print(f"  batch (1 thread) / loop:  {t_loop / t_one:.2f}x")
+    if t_alone is not None:
+        print(f"  batch (2 threads) / loop on 1 CPU: {t_alone / t_two:.2f}x")
 
     profile = cProfile.Profile()
     profile.runcall(batch, 1)
