@@ -36,6 +36,10 @@ IntArray = npt.NDArray[np.intp]
 class StepRecords:
     """Preallocated per-step records of a run; contacts kept raw, classified at the end.
 
+    The carried geoms' poses are kept for clearances computed after the run;
+    records whose ``clearance`` is already set (a :class:`SensedRecorder`'s)
+    keep none.
+
     Args:
         model: The model.
         steps: Number of steps S to record.
@@ -176,7 +180,8 @@ class SensedRecorder:
         record = StepRecords(model, 0, -1, groups)
         record.time, record.qpos = np.empty(steps), np.empty((steps, model.nq))
         record.force, record.tool = np.empty((steps, model.nu)), np.empty((steps, 3))
-        record.geom_xpos, record.geom_xmat = np.empty((steps, r, 3)), np.empty((steps, r, 9))
+        # clearances are computed chunk by chunk: the geom poses need not be kept
+        record.geom_xpos, record.geom_xmat = np.empty((0, r, 3)), np.empty((0, r, 9))
         record.carried = np.arange(r)
         record.contact_start = np.zeros(steps + 1, dtype=np.intp)
         self._clearance = np.empty((steps, len(groups.obstacle_geoms)))
@@ -240,7 +245,6 @@ class SensedRecorder:
         rows = slice(start, end)
         record.time[rows], record.qpos[rows] = chunk.time, chunk.qpos
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
-        record.geom_xpos[rows], record.geom_xmat[rows] = sensors.geom_xpos, sensors.geom_xmat
         plan = ClearancePlan(model, self._geometry, sensors.geom_xpos, sensors.geom_xmat)
         gate, near = sensors.gate.tolist(), plan.near.tolist()
         qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
