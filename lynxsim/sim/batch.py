@@ -56,6 +56,7 @@ from lynxsim.sim.rollout import (
     plan_commands,
     rest_at_start,
     rollout,
+    whole_controls,
 )
 from lynxsim.sim.sensors import RecordingLayout
 from lynxsim.sim.summary import Playback, summarize
@@ -89,13 +90,6 @@ class BatchRun:
     task: str
     trajectory: str
     gripper_cmd: Callable[[float], float] | None = None
-
-
-def _controls(base: FloatArray, adr: npt.NDArray[np.intp], values: FloatArray) -> FloatArray:
-    """Whole control vectors, (K, nu): ``base`` (nu,) with columns ``adr`` set from (K, c)."""
-    out = np.repeat(base[None], len(values), axis=0)
-    out[:, adr] = values
-    return out
 
 
 def batch_rollout(
@@ -226,8 +220,8 @@ def _stepped(
         rest_at_start(model, data, binding, c.q_cmd[0])
         mujoco.mj_getState(model, data, sims.state[j], mujoco.mjtState.mjSTATE_INTEGRATION)
         base = np.array(data.ctrl)
-        hold.append(_controls(base, c.ctrl_adr, c.hold))
-        ctrl.append(_controls(base, c.ctrl_adr, c.ctrl))
+        hold.append(whole_controls(base, c.ctrl_adr, c.hold))
+        ctrl.append(whole_controls(base, c.ctrl_adr, c.ctrl))
     clock, sensordata = sims.bind("time"), sims.bind("sensordata")
     if len(hold[0]):
         sims.rollout(len(hold[0]), np.stack(hold), record=())

@@ -341,32 +341,6 @@ def _bounds(geometry: ClearanceGeometry, xpos: FloatArray, xmat: FloatArray) -> 
     return out
 
 
-def _exact_row(
-    model: mujoco.MjModel,
-    data: mujoco.MjData,
-    geoms: list[int],
-    obstacles: list[int],
-    order: list[list[int]],
-    bound: list[list[float]],
-    cap: float,
-) -> list[float]:
-    """Exact clearance to each obstacle of the posed ``data``, (m,) [m].
-
-    ``order[j]`` lists the carried geoms by ascending bound to obstacle j and
-    ``bound[j]`` those bounds; exact distances (``mj_geomDistance``) are computed
-    in that order until the next bound reaches the best distance found.
-    """
-    out = []
-    for obstacle, rank, low in zip(obstacles, order, bound, strict=True):
-        best = cap
-        for i, b in zip(rank, low, strict=True):
-            if b >= best:
-                break
-            best = min(best, mujoco.mj_geomDistance(model, data, geoms[i], obstacle, best, None))
-        out.append(best)
-    return out
-
-
 def clearances(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -375,32 +349,21 @@ def clearances(
 ) -> FloatArray:
     """Smallest signed distance from the robot and payload to each obstacle [m], (m,).
 
-    Each geom's distance from the obstacle's own shape at its centre, less its
-    extent towards the obstacle, bounds every pair from below; exact distances
-    (``mj_geomDistance``) are computed in the order of that bound until the next
-    bound reaches the best distance found, so geoms far from an obstacle cost
-    nothing. Distances of ``cap`` or more read as ``cap``. Needs the geom poses
-    of ``data`` (``mj_kinematics``).
+    The :class:`ClearancePlan` of this one state: each geom's distance from the
+    obstacle's own shape at its centre, less its extent towards the obstacle,
+    bounds every pair from below; exact distances (``mj_geomDistance``) are
+    computed from the smallest bound on until the next bound reaches the best
+    distance found, so geoms far from an obstacle cost nothing. Distances of
+    ``cap`` or more read as ``cap``. Needs the geom poses of ``data``
+    (``mj_kinematics``).
     """
-    obstacles = groups.obstacle_geoms
     carried = np.flatnonzero(groups.carried)
-    if len(obstacles) == 0 or len(carried) == 0:
-        return np.full(len(obstacles), cap)
     xpos = np.asarray(data.geom_xpos)[carried][None]
-    geometry = ClearanceGeometry.of(model, data, groups)
-    bounds = _bounds(geometry, xpos, np.asarray(data.geom_xmat)[carried][None])[0]
-    order = np.argsort(bounds, axis=0)
-    low = np.take_along_axis(bounds, order, axis=0)
-    row = _exact_row(
-        model,
-        data,
-        carried.tolist(),
-        obstacles.tolist(),
-        order.T.tolist(),
-        low.T.tolist(),
-        cap,
-    )
-    return np.array(row, dtype=float)
+    xmat = np.asarray(data.geom_xmat)[carried][None]
+    plan = ClearancePlan(model, ClearanceGeometry.of(model, data, groups), xpos, xmat, cap)
+    if not plan.near[0]:
+        return np.full(len(groups.obstacle_geoms), cap)
+    return np.array(plan.row(0, data), dtype=float)
 
 
 class ClearancePlan:

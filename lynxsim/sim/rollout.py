@@ -48,6 +48,7 @@ __all__ = [
     "plan_commands",
     "rest_at_start",
     "rollout",
+    "whole_controls",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -279,6 +280,13 @@ def _lagged_run(
     record.pose(len(ctrl) - 1, model, data)
 
 
+def whole_controls(base: FloatArray, adr: IntArray, values: FloatArray) -> FloatArray:
+    """Whole control vectors, (K, nu): ``base`` (nu,) with columns ``adr`` set from (K, c)."""
+    out = np.repeat(base[None], len(values), axis=0)
+    out[:, adr] = values
+    return out
+
+
 def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     """How a run of ``steps`` steps is stepped natively: consecutive (start, end) pairs.
 
@@ -325,8 +333,7 @@ def _native_run(
     base = np.array(data.ctrl)
 
     def play(controls: FloatArray) -> tuple[FloatArray, FloatArray]:
-        u = np.repeat(base[None], len(controls), axis=0)
-        u[:, commands.ctrl_adr] = controls
+        u = whole_controls(base, commands.ctrl_adr, controls)
         mujoco.mj_getState(model, data, state, full)
         states, sensordata = native.rollout(
             model,
