@@ -72,12 +72,13 @@ def _robot_roots(model: mujoco.MjModel, binding: RobotBinding) -> list[int] | No
             out.add(b)
         return out
 
-    roots = sorted(b for b in robot if not above(b) & robot)
+    roots = {b for b in robot if not above(b) & robot}
     collides = (np.asarray(model.geom_contype) | np.asarray(model.geom_conaffinity)) != 0
     for g in np.flatnonzero(collides & ~groups.robot).tolist():
-        if above(int(body_of[g])) & set(roots) or int(body_of[g]) in roots:
+        body = int(body_of[g])
+        if (above(body) | {body}) & roots:  # in a robot subtree
             return None
-    return roots
+    return sorted(roots)
 
 
 def _names(
@@ -112,7 +113,8 @@ def add_recording_sensors(
 
     Returns:
         The model with the sensors; ``model`` itself if an element they need
-        has no name (a playback then records in Python, the same records).
+        has no name, or a robot subtree holds a colliding geom that is not the
+        robot's (a playback then records in Python, the same records).
     """
     roots = _robot_roots(model, binding)
     if roots is None:
