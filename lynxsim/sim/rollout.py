@@ -65,7 +65,9 @@ _PROGRESS_EVERY = 0.05
 
 _CHUNK_FIRST = 32
 _CHUNK_MOST = 128
-"""Steps of the first native chunk of a run, and the most of any (see :func:`chunk_bounds`)."""
+_CHUNK_LAST = 16
+"""Steps of the first native chunk of a run, the most of any, and of the last
+(see :func:`chunk_bounds`)."""
 
 RANGE_TOL = 1e-6
 """Commands may exceed a joint range by this much [rad] (rounding of the samples)."""
@@ -290,22 +292,24 @@ def whole_controls(base: FloatArray, adr: IntArray, values: FloatArray) -> Float
 def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     """How a run of ``steps`` steps is stepped natively: consecutive (start, end) pairs.
 
-    ``_CHUNK_MOST`` steps each, but short at either end: the records of the
-    first chunk wait for its stepping, and those of the last are made after
-    all stepping.
+    At most ``_CHUNK_MOST`` steps each, the middle ones of equal length, and
+    short at either end (doubling from ``_CHUNK_FIRST``, halving down to
+    ``_CHUNK_LAST``): the records of the first chunk wait for its stepping,
+    and those of the last are made after all stepping.
     """
-    ramp, size = [], _CHUNK_FIRST
-    while size < _CHUNK_MOST:
-        ramp.append(size)
-        size *= 2
-    middle = steps - 2 * sum(ramp)
+    up = [_CHUNK_FIRST << k for k in range((_CHUNK_MOST // _CHUNK_FIRST).bit_length() - 1)]
+    down = [_CHUNK_LAST << k for k in range((_CHUNK_MOST // _CHUNK_LAST).bit_length() - 2, -1, -1)]
+    middle = steps - sum(up) - sum(down)
     if middle < 0:  # too short to ramp
         sizes = [_CHUNK_FIRST] * (steps // _CHUNK_FIRST) + (
             [steps % _CHUNK_FIRST] if steps % _CHUNK_FIRST else []
         )
     else:
-        full, rest = divmod(middle, _CHUNK_MOST)
-        sizes = [*ramp, *([_CHUNK_MOST] * full), *([rest] if rest else []), *ramp[::-1]]
+        # the middle in equal chunks: a short one there would starve the
+        # stepping, which may run only so many chunks ahead of the records
+        count = -(-middle // _CHUNK_MOST)
+        size, longer = divmod(middle, count) if count else (0, 0)
+        sizes = [*up, *([size + 1] * longer), *([size] * (count - longer)), *down]
     ends = np.cumsum(sizes).tolist()
     return list(zip([0, *ends[:-1]], ends, strict=True))
 
@@ -366,7 +370,9 @@ def _native_run(
         if progress is not None:
             progress(recorder.done / len(commands.ctrl))
 
-    share_stepping([chunks()], record, helpers=min(1, cpu_count() - 1))
+    # four chunks ahead: the stepping is not held up where the records of a
+    # stretch that rubs an obstacle cost more than its physics
+    share_stepping([chunks()], record, helpers=min(1, cpu_count() - 1), ahead=4)
     return recorder.finish()
 
 

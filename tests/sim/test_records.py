@@ -111,7 +111,10 @@ def test_chunks_cover_the_run_in_order_short_at_either_end(steps):
     assert max(sizes) <= rollout_module._CHUNK_MOST
     assert sizes[0] <= rollout_module._CHUNK_FIRST
     if steps >= 4 * rollout_module._CHUNK_MOST:
-        assert sizes[-1] == rollout_module._CHUNK_FIRST
+        assert sizes[-1] == rollout_module._CHUNK_LAST
+        # no short chunk in the middle: the stepping may run only so many chunks ahead
+        middle = [s for s in sizes if s > rollout_module._CHUNK_MOST // 2]
+        assert max(middle) - min(middle) <= 1
 
 
 def test_progress_is_heard_per_native_chunk_and_changes_nothing():
