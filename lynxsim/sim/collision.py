@@ -437,7 +437,10 @@ class ClearancePlan:
                     if bound[i] >= best:
                         break
                     if self._geoms[i] != g:
-                        best = min(best, distance(m, data, self._geoms[i], target, best, None))
+                        # a cap of at least 0: given a negative one, a capsule and a box
+                        # may read the cap instead of a deeper depth (MuJoCo 4.0)
+                        cut = best if best > 0.0 else 0.0
+                        best = min(best, distance(m, data, self._geoms[i], target, cut, None))
             out.append(best if best < cap else cap)
         return out
 

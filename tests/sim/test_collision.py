@@ -22,7 +22,13 @@ from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE, TABLE, Box, Cylinder, S
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker, play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
-from lynxsim.sim.collision import CLEARANCE_CAP_M, CollisionChecker, classify_contacts
+from lynxsim.sim.collision import (
+    CLEARANCE_CAP_M,
+    ClearanceGeometry,
+    CollisionChecker,
+    _bounds,
+    classify_contacts,
+)
 from lynxsim.sim.rollout import PlaybackLog
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
@@ -336,6 +342,42 @@ def test_checker_sees_an_obstacle_moved_in_the_model():
     np.testing.assert_array_equal(after.clearance_m, fresh.clearance_m)
     np.testing.assert_array_equal(after.obstacle, fresh.obstacle)
     assert checker.min_clearance(q, cap=CLEARANCE_CAP_M)[0] == fresh.min_clearance_m[0] > near[0]
+
+
+def test_a_clearance_in_penetration_is_no_shallower_than_any_pair_its_bounds_admit():
+    """In penetration every pair whose bound is below the clearance is measured exactly.
+
+    ``mj_geomDistance`` of a capsule and a box given a negative ``distmax``
+    may return ``distmax`` instead of a deeper depth, so a second pair must be
+    measured with a cap of at least zero. Random joint vectors among a box, a
+    cylinder and a sphere; each pair that the bounds do not rule out
+    (bound < clearance) is measured alone and must not be deeper.
+    """
+    model = load_arm_scene(Scene(THREE_OBSTACLES.obstacles))
+    checker = arm_checker(model)
+    groups = checker.groups
+    rng = np.random.default_rng(5)
+    q = rng.uniform(np.radians([-90, 0, -145, -90, 0]), np.radians([90, 135, 0, 90, 360]), (600, 5))
+    result = checker.check(q)
+    ids = SceneIds.from_model(model)
+    data = mujoco.MjData(model)
+    carried = np.flatnonzero(groups.carried)
+    checked = 0
+    for k in np.flatnonzero((result.clearance_m < 0.0).any(axis=1)).tolist():
+        data.qpos[:] = model.qpos0
+        data.qpos[list(ids.arm_qpos)] = q[k]
+        mujoco.mj_kinematics(model, data)
+        geometry = ClearanceGeometry.of(model, data, groups)
+        bounds = _bounds(geometry, data.geom_xpos[carried][None], data.geom_xmat[carried][None])[0]
+        for j, obstacle in enumerate(groups.obstacle_geoms.tolist()):
+            clearance = result.clearance_m[k, j]
+            for i in np.flatnonzero(bounds[:, j] < clearance).tolist():
+                alone = mujoco.mj_geomDistance(
+                    model, data, int(carried[i]), obstacle, CLEARANCE_CAP_M, None
+                )
+                assert alone >= clearance, (k, model.geom(int(carried[i])).name, alone, clearance)
+                checked += 1
+    assert checked > 100
 
 
 @pytest.mark.parametrize("grasped", [False, True], ids=["cube_on_table", "cube_held"])
