@@ -5,7 +5,9 @@ Run: ``python benchmarks/bench_batch.py``.
 The same runs (every shipped arm task with every waypoint trajectory type, the
 gripper scheduled where the scene has a cube, reports included) are played in
 one process as (a) a loop of :func:`~lynxsim.sim.arm.playback.play_arm`
-(each on two threads where it can; (a') again bound to one CPU),
+(each on two threads where it can; (a') again bound to one CPU; (a'') each
+stepped in a Python loop, as a step hook makes it, the path every playback
+took when issue 12 was filed),
 (b) :func:`~lynxsim.sim.batch.play_arm_batch` on one thread, (c) on two; the
 wall times (medians) and their ratios are printed, then where the batch's time
 goes (one profiled batch on one thread). Issue 12's targets: (c) >= 1.8x (b),
@@ -23,6 +25,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first imported
+
+import mujoco
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene
@@ -48,6 +52,10 @@ PARTS = {
     "summaries": ("summary.py", "summarize"),
 }
 """Where the batch's time goes: label -> profiled (file name, function name)."""
+
+
+def _nothing(step: int, data: mujoco.MjData) -> None:
+    """A step hook that watches nothing (it keeps a playback in its Python loop)."""
 
 
 def _median_s(fn: Callable[[], object]) -> float:
@@ -102,11 +110,20 @@ def main() -> None:
             )
         ]
 
+    def python_loop() -> list[Playback]:
+        return [
+            play_arm(model, t, task=name, gripper_cmd=g, on_step=_nothing)
+            for model, name, trajectories, grippers in groups
+            for t, g in zip(trajectories, grippers, strict=True)
+        ]
+
     reference = loop()
+    assert [p.report for p in python_loop()] == [p.report for p in reference]
     for nthread in (1, 2):
         assert [p.report for p in batch(nthread)] == [p.report for p in reference]
     t_loop = _median_s(loop)
     t_alone = _on_one_cpu(lambda: _median_s(loop))
+    t_python = _median_s(python_loop)
     t_one = _median_s(lambda: batch(1))
     t_two = _median_s(lambda: batch(2))
     print(f"{runs} runs, {steps} recorded steps, {os.cpu_count()} CPUs, medians of {REPEATS}")
@@ -116,6 +133,10 @@ def main() -> None:
             f"  (a') the loop on 1 CPU   {t_alone:7.3f} s  {t_alone / steps * 1e6:6.1f} us/step"
             "  (no helper thread)"
         )
+    print(
+        f"  (a'') loop, Python-stepped {t_python:7.3f} s  {t_python / steps * 1e6:6.1f} us/step"
+        "  (a step hook on each run)"
+    )
     print(f"  (b) batch, 1 thread      {t_one:7.3f} s  {t_one / steps * 1e6:6.1f} us/step")
     print(f"  (c) batch, 2 threads     {t_two:7.3f} s  {t_two / steps * 1e6:6.1f} us/step")
     print(f"  2 threads / 1 thread: {t_one / t_two:.2f}x (target >= 1.8x)")
@@ -123,6 +144,7 @@ def main() -> None:
     print(f"  batch (1 thread) / loop:  {t_loop / t_one:.2f}x")
     if t_alone is not None:
         print(f"  batch (2 threads) / loop on 1 CPU: {t_alone / t_two:.2f}x")
+    print(f"  batch (2 threads) / Python-stepped loop: {t_python / t_two:.2f}x")
 
     profile = cProfile.Profile()
     profile.runcall(batch, 1)
