@@ -49,6 +49,7 @@ from lynxsim.sim.overlap import cpu_count, share_stepping
 from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
 from lynxsim.sim.rollout import (
     PlaybackLog,
+    ProgressFn,
     RunCommands,
     chunk_bounds,
     finish_log,
@@ -100,6 +101,7 @@ def batch_rollout(
     nthread: int | None = None,
     settle_s: float = 0.5,
     presettle_s: float = 0.5,
+    progress: ProgressFn | None = None,
 ) -> list[PlaybackLog]:
     """Play many runs of one model natively, in parallel; each log is ``rollout``'s, bit for bit.
 
@@ -116,6 +118,8 @@ def batch_rollout(
             the caller's thread records, and steps when it has nothing to record.
         settle_s: Hold time after each trajectory [s].
         presettle_s: Hold time before it, unrecorded [s].
+        progress: Called with the fraction of all runs' recorded steps done,
+            after each stepped chunk is recorded.
 
     Returns:
         One log per run, in order.
@@ -154,8 +158,10 @@ def batch_rollout(
         for n in lengths
     ]
     pieces: list[list[SensedChunk]] = [[] for _ in commands]
+    total, done = sum(lengths), 0
 
     def record(chunks: list[tuple[int, SensedChunk, bool]]) -> None:
+        nonlocal done
         for i, chunk, warned in chunks:
             recorder = recorders[i]
             if recorder is not None:
@@ -164,6 +170,9 @@ def batch_rollout(
                 pieces[i].append(chunk)
             if chunk.final is not None:
                 logs[i] = _log(i, warned, recorder)
+            done += len(chunk.time)
+        if progress is not None:
+            progress(done / total)
 
     def _log(i: int, warned: bool, recorder: SensedRecorder | None) -> PlaybackLog:
         run, c = runs[i], commands[i]
@@ -325,6 +334,7 @@ def play_arm_batch(
     settle_s: float = 0.5,
     gripper_cmds: Sequence[Callable[[float], float] | None] | None = None,
     nthread: int | None = None,
+    progress: ProgressFn | None = None,
 ) -> list[Playback]:
     """:func:`~lynxsim.sim.arm.playback.play_arm` of many trajectories in one batch.
 
@@ -340,6 +350,8 @@ def play_arm_batch(
         gripper_cmds: Gripper opening [m] over trajectory time [s], one per
             trajectory (None: no gripper command in any run).
         nthread: Threads to use, the caller's included (None: one per CPU).
+        progress: Called with the fraction of the stepping done, now and then
+            (see :func:`batch_rollout`).
 
     Returns:
         One :class:`~lynxsim.sim.summary.Playback` per trajectory, in order.
@@ -365,5 +377,7 @@ def play_arm_batch(
                 gripper_cmd=gripper,
             )
         )
-    logs = batch_rollout(model, arm_binding(model), runs, nthread=nthread, settle_s=settle_s)
+    logs = batch_rollout(
+        model, arm_binding(model), runs, nthread=nthread, settle_s=settle_s, progress=progress
+    )
     return [Playback(report=summarize(log), log=log) for log in logs]

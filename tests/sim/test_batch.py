@@ -16,6 +16,7 @@ from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
 from lynxsim.sim.batch import BatchRun, batch_rollout, play_arm_batch
+from lynxsim.sim.rollout import chunk_bounds
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
@@ -80,6 +81,28 @@ def test_batch_keeps_verdicts_first_contacts_and_clearances():
         assert played.report.obstacle == single.report.obstacle
         assert played.report.obstacles == single.report.obstacles
         assert_identical(played.log.clearance_m, single.log.clearance_m)
+
+
+@pytest.mark.parametrize("nthread", [1, 2], ids=["1thread", "2threads"])
+def test_batch_progress_rises_to_one_and_changes_nothing(nthread):
+    """A progress bar over a batch: heard once per stepped chunk of a group, the same logs."""
+    task = load_task(ROOT / "tasks" / "three_obstacles.toml")
+    model = load_arm_scene(task.scene)
+    trajectories = [build_trajectory(task, kind) for kind in KINDS[:3]]
+    heard: list[float] = []
+    with_bar = play_arm_batch(
+        model, trajectories, task=task.name, nthread=nthread, progress=heard.append
+    )
+    without = play_arm_batch(model, trajectories, task=task.name, nthread=nthread)
+    longest = max(p.log.steps for p in with_bar)
+    groups = min(nthread, len(trajectories))
+    assert len(heard) >= len(chunk_bounds(longest))  # every group's chunks are heard
+    assert len(heard) <= groups * len(chunk_bounds(longest))
+    assert heard == sorted(heard)
+    assert 0.0 < heard[0] < 1.0
+    assert heard[-1] == 1.0
+    for a, b in zip(with_bar, without, strict=True):
+        assert_same_playback(a, b)
 
 
 def test_run_where_mujoco_warns_is_logged_as_rollout_logs_it():
