@@ -23,13 +23,16 @@ Playback's per-step verdict (:class:`ContactTracker`), the environments'
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
+from typing import Any
 
 import mujoco
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
+from lynxsim.inputs import finite_array, positive_number, real_array
 from lynxsim.sim.report import CollisionVerdict, ContactPair
 
 __all__ = [
@@ -689,7 +692,8 @@ class CollisionChecker:
     Poses the robot (kinematics only) on a private :class:`mujoco.MjData` and
     runs MuJoCo's collision detection, then applies :func:`classify_contacts`
     and :func:`clearances`: the verdict a playback step would give in the same
-    configuration.
+    configuration. One checker may serve several threads: its calls take turns
+    on the private data.
 
     Args:
         model: The scene.
@@ -700,6 +704,10 @@ class CollisionChecker:
         attach: ``(payload qpos address, site id)``: with ``grasped=True`` the
             payload's free joint is put at that site (the cube held by the gripper).
         cap: Clearance cap [m].
+
+    Raises:
+        InvalidInputError: ``base_qpos`` is not finite or has the wrong shape,
+            ``attach`` names no free joint, or ``cap`` is not a positive number.
     """
 
     def __init__(
@@ -715,14 +723,15 @@ class CollisionChecker:
         self.model = model
         self.groups = groups
         self._data = mujoco.MjData(model)
+        self._lock = threading.Lock()
         self._adr = np.asarray(qpos_adr, dtype=np.intp).reshape(-1)
-        base = np.array(model.qpos0 if base_qpos is None else base_qpos, dtype=float)
-        if base.shape != (model.nq,) or not np.isfinite(base).all():
-            raise InvalidInputError(f"base_qpos must be finite with shape ({model.nq},)")
+        base = finite_array(model.qpos0 if base_qpos is None else base_qpos, "base_qpos").copy()
+        if base.shape != (model.nq,):
+            raise InvalidInputError(f"base_qpos must have shape ({model.nq},), got {base.shape}")
         self._base = base
         self._attach = attach
-        self._payload_geoms = self._payload_frames(attach)
-        self._cap = float(cap)
+        self._payload = self._payload_frames(attach)
+        self._cap = positive_number(cap, "cap", "m")
         self._fromto = np.zeros(6)
         robot = np.flatnonzero(groups.robot).tolist()
         support = np.flatnonzero(groups.support).tolist()
@@ -734,23 +743,42 @@ class CollisionChecker:
 
     def _payload_frames(
         self, attach: tuple[int, int] | None
-    ) -> tuple[IntArray, FloatArray, FloatArray]:
-        """The payload body's geoms and their poses in its frame: ids, (k, 3) [m], (k, 3, 3)."""
+    ) -> tuple[int, IntArray, FloatArray, FloatArray]:
+        """The payload body, and the poses in its frame of its inertial frame and its geoms.
+
+        Returns:
+            The body id (-1 without a payload), its geoms' ids (k,), and the
+            positions (1 + k, 3) [m] and orientations (1 + k, 3, 3) of its
+            inertial frame (first) and geoms.
+        """
         m = self.model
         if attach is None:
-            return np.zeros(0, dtype=np.intp), np.zeros((0, 3)), np.zeros((0, 3, 3))
+            return -1, np.zeros(0, dtype=np.intp), np.zeros((0, 3)), np.zeros((0, 3, 3))
         joint = np.flatnonzero(
             (np.asarray(m.jnt_qposadr) == attach[0])
-            & (np.asarray(m.jnt_type) == mujoco.mjtJoint.mjJNT_FREE)
+            & (np.asarray(m.jnt_type) == int(mujoco.mjtJoint.mjJNT_FREE))
         )
         if len(joint) != 1:
             raise InvalidInputError(f"qpos address {attach[0]} is not that of a free joint")
         body = int(m.jnt_bodyid[joint[0]])
         geoms = np.flatnonzero(np.asarray(m.geom_bodyid) == body)
-        local = np.empty((len(geoms), 9))
-        for i, g in enumerate(geoms.tolist()):
-            mujoco.mju_quat2Mat(local[i], m.geom_quat[g])
-        return geoms, np.array(m.geom_pos[geoms]), local.reshape(-1, 3, 3)
+        quats = np.concatenate([m.body_iquat[body][None], m.geom_quat[geoms]])
+        local = np.empty((len(quats), 9))
+        for i, quat in enumerate(quats):
+            mujoco.mju_quat2Mat(local[i], quat)
+        offsets = np.concatenate([m.body_ipos[body][None], m.geom_pos[geoms]])
+        return body, geoms, offsets, local.reshape(-1, 3, 3)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """State for pickling (an environment holding a checker is copied): without the lock."""
+        state = self.__dict__.copy()
+        del state["_lock"]
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Restore a pickled checker, with a lock of its own."""
+        self.__dict__.update(state)
+        self._lock = threading.Lock()
 
     @property
     def n_joints(self) -> int:
@@ -771,7 +799,9 @@ class CollisionChecker:
             InvalidInputError: Wrong shape, or ``grasped`` without an attach point.
             NonFiniteInputError: A value is NaN or infinite.
         """
-        return self._check(self._states(q, grasped), grasped)
+        states = self._states(q, grasped)
+        with self._lock:
+            return self._check(states, grasped)
 
     def min_clearance(
         self, q: npt.ArrayLike, *, grasped: bool = False, cap: float | None = None
@@ -799,9 +829,11 @@ class CollisionChecker:
             NonFiniteInputError: A value is NaN or infinite.
         """
         states = self._states(q, grasped)
-        limit = self._cap if cap is None else float(cap)
-        if not limit > 0.0:
-            raise InvalidInputError(f"cap must be positive, got {cap!r}")
+        limit = self._cap if cap is None else positive_number(cap, "cap", "m")
+        with self._lock:
+            return self._min_clearance(states, grasped, limit)
+
+    def _min_clearance(self, states: FloatArray, grasped: bool, limit: float) -> FloatArray:
         m, d, g = self.model, self._data, self.groups
         hits = self._obstacle_pairs | self._self_pairs | self._support_pairs
         carried = np.flatnonzero(g.carried)
@@ -815,7 +847,7 @@ class CollisionChecker:
                 out[k] = -np.inf
             posed[k] = d.qpos  # the payload held, if it is
             xpos[k] = d.geom_xpos[carried]
-        if len(obstacles) == 0 or len(carried) == 0:
+        if len(obstacles) == 0 or len(carried) == 0 or count == 0:
             return out
         # Bounding spheres against the obstacles' boxes: a few array operations
         # for the whole batch (the planner asks small batches, many times).
@@ -843,7 +875,7 @@ class CollisionChecker:
 
     def _states(self, q: npt.ArrayLike, grasped: bool) -> FloatArray:
         """Whole states of joint vectors, (N, nq), the rest from the base state."""
-        q = np.asarray(q, dtype=float)
+        q = real_array(q, "q")
         n = self.n_joints
         if q.ndim not in (1, 2) or q.shape[-1] != n:
             raise InvalidInputError(f"q must have shape (N, {n}) or ({n},), got {q.shape}")
@@ -857,14 +889,15 @@ class CollisionChecker:
 
     def check_states(self, qpos: npt.ArrayLike) -> CollisionCheck:
         """Check whole states (e.g. a playback log's ``qpos``), (N, nq)."""
-        states = np.asarray(qpos, dtype=float)
+        states = real_array(qpos, "qpos")
         if states.ndim != 2 or states.shape[1] != self.model.nq:
             raise InvalidInputError(
                 f"qpos must have shape (N, {self.model.nq}), got {states.shape}"
             )
         if not np.isfinite(states).all():
             raise NonFiniteInputError("states must be finite")
-        return self._check(states, False)
+        with self._lock:
+            return self._check(states, False)
 
     def _check(self, states: FloatArray, grasped: bool) -> CollisionCheck:
         m, d, g = self.model, self._data, self.groups
@@ -908,11 +941,12 @@ class CollisionChecker:
         ]
 
     def _hold_payload(self, qpos_adr: int, site: int) -> None:
-        """Put the payload's free joint at the site, and its geoms with it (no second kinematics).
+        """Put the payload's free joint at the site, its body and geoms with it.
 
-        ``data`` must hold the kinematics of the rest of the state. The payload's
-        geoms get the site's pose composed with their own offsets, as
-        ``mj_kinematics`` would place them (to rounding).
+        No second kinematics: ``data`` must hold the kinematics of the rest of
+        the state. The payload body's frames (MuJoCo's broadphase bounds a
+        body in its inertial frame) and its geoms get the site's pose composed
+        with their own offsets, as ``mj_kinematics`` would place them (to rounding).
         """
         d = self._data
         d.qpos[qpos_adr : qpos_adr + 3] = d.site_xpos[site]
@@ -920,6 +954,8 @@ class CollisionChecker:
         mujoco.mju_mat2Quat(quat, d.site_xmat[site])
         d.qpos[qpos_adr + 3 : qpos_adr + 7] = quat
         origin, rot = d.site_xpos[site], d.site_xmat[site].reshape(3, 3)
-        geoms, offset, local = self._payload_geoms
-        d.geom_xpos[geoms] = origin + offset @ rot.T
-        d.geom_xmat[geoms] = (rot @ local).reshape(-1, 9)
+        body, geoms, offset, local = self._payload
+        pos, mat = origin + offset @ rot.T, (rot @ local).reshape(-1, 9)
+        d.xpos[body], d.xmat[body] = origin, rot.reshape(9)
+        d.xipos[body], d.ximat[body] = pos[0], mat[0]
+        d.geom_xpos[geoms], d.geom_xmat[geoms] = pos[1:], mat[1:]

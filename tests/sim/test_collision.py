@@ -8,6 +8,8 @@ checker's verdict and clearance for a logged state must be the log's, exactly.
 from __future__ import annotations
 
 import math
+import pickle
+import threading
 from pathlib import Path
 
 import mujoco
@@ -25,6 +27,7 @@ from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.collision import (
     CLEARANCE_CAP_M,
     ClearanceGeometry,
+    CollisionCheck,
     CollisionChecker,
     _bounds,
     classify_contacts,
@@ -240,13 +243,62 @@ def test_checker_refuses_bad_shapes_and_non_finite_values():
         states[1, 2] = bad
         with pytest.raises(NonFiniteInputError, match="states must be finite"):
             checker.check_states(states)
-    with pytest.raises(InvalidInputError, match="base_qpos must be finite"):
+    with pytest.raises(InvalidInputError, match="base_qpos must have shape"):
         CollisionChecker(model, checker.groups, [0, 1], base_qpos=np.zeros(model.nq - 1))
-    with pytest.raises(InvalidInputError, match="base_qpos must be finite"):
+    with pytest.raises(NonFiniteInputError, match="base_qpos must be finite"):
         CollisionChecker(model, checker.groups, [0, 1], base_qpos=np.full(model.nq, math.nan))
+    for cap, error in (
+        (-1.0, InvalidInputError),
+        (0.0, InvalidInputError),
+        (math.nan, NonFiniteInputError),
+        ("1", InvalidInputError),
+        (True, InvalidInputError),
+    ):
+        with pytest.raises(error, match="cap must"):
+            CollisionChecker(model, checker.groups, [0, 1], cap=cap)
+        with pytest.raises(error, match="cap must"):
+            checker.min_clearance(np.zeros(5), cap=cap)
+    for q in (np.zeros(5, dtype=complex), np.zeros(5, dtype=bool), "abc", None):
+        with pytest.raises(InvalidInputError, match="q must be real numbers"):
+            checker.check(q)
+        with pytest.raises(InvalidInputError, match="q must be real numbers"):
+            checker.min_clearance(q)
     without_cube = arm_checker(load_arm_scene(REPORT_SCENE.without_cube()))
     with pytest.raises(InvalidInputError, match="grasped=True needs a payload"):
         without_cube.check(np.zeros(5), grasped=True)
+
+
+def test_checker_of_no_vectors_answers_empty():
+    checker = arm_checker(load_arm_scene(REPORT_SCENE))
+    none = np.zeros((0, 5))
+    assert checker.min_clearance(none).shape == (0,)
+    assert checker.check(none).clearance_m.shape == (0, 1)
+
+
+def test_one_checker_serves_threads_and_pickles():
+    """Calls from several threads take turns on the checker's data: the answers of one thread."""
+    checker = arm_checker(load_arm_scene(THREE_OBSTACLES))
+    q = np.random.default_rng(2).uniform(-0.5, 0.5, (200, 5))
+    expected = checker.check(q)
+    smallest = checker.min_clearance(q)
+    answers: list[tuple[CollisionCheck, np.ndarray]] = []
+
+    def ask() -> None:
+        for _ in range(5):
+            answers.append((checker.check(q), checker.min_clearance(q)))
+
+    threads = [threading.Thread(target=ask) for _ in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert len(answers) == 10
+    for check, clearance in answers:
+        for field in ("obstacle", "self_hit", "support", "clearance_m"):
+            np.testing.assert_array_equal(getattr(check, field), getattr(expected, field))
+        np.testing.assert_array_equal(clearance, smallest)
+    copy = pickle.loads(pickle.dumps(checker))
+    np.testing.assert_array_equal(copy.min_clearance(q), smallest)
 
 
 def test_clearance_far_from_every_obstacle_reads_as_the_cap():
@@ -342,6 +394,49 @@ def test_checker_sees_an_obstacle_moved_in_the_model():
     np.testing.assert_array_equal(after.clearance_m, fresh.clearance_m)
     np.testing.assert_array_equal(after.obstacle, fresh.obstacle)
     assert checker.min_clearance(q, cap=CLEARANCE_CAP_M)[0] == fresh.min_clearance_m[0] > near[0]
+
+
+def test_a_held_cube_touching_an_obstacle_is_a_hit():
+    """The held cube collides where it is held: its body, not only its geoms, is moved there.
+
+    Against ``mj_kinematics`` + ``mj_collision`` with the cube's free joint put
+    at the tool site, over random joint vectors in a scene of three obstacles
+    (MuJoCo's broadphase places a body by its inertial frame: a cube whose
+    geoms alone were moved kept its contacts where it stood on the table).
+    """
+    model = load_arm_scene(Scene(THREE_OBSTACLES.obstacles, cube=REPORT_SCENE.cube))
+    checker = arm_checker(model)
+    groups = checker.groups
+    rng = np.random.default_rng(11)
+    q = rng.uniform(
+        np.radians([-90, 0, -145, -90, 0]), np.radians([90, 135, 0, 90, 360]), (3000, 5)
+    )
+    result = checker.check(q, grasped=True)
+    smallest = checker.min_clearance(q, grasped=True)
+    ids = SceneIds.from_model(model)
+    data = mujoco.MjData(model)
+    pairs = groups.obstacle_pairs()
+    hits = 0
+    for k in range(len(q)):
+        data.qpos[:] = model.qpos0
+        data.qpos[list(ids.arm_qpos)] = q[k]
+        mujoco.mj_kinematics(model, data)
+        adr = ids.cube_qpos
+        data.qpos[adr : adr + 3] = data.site_xpos[ids.tool_site]
+        mujoco.mju_mat2Quat(data.qpos[adr + 3 : adr + 7], data.site_xmat[ids.tool_site])
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        touching = {
+            (int(a), int(b))
+            for (a, b), dist in zip(data.contact.geom, data.contact.dist, strict=True)
+            if dist <= 0.0
+        }
+        expected = bool(touching & pairs)
+        assert result.obstacle[k] == expected, k
+        if expected:
+            hits += 1
+            assert smallest[k] == -np.inf
+    assert hits > 50
 
 
 def test_a_clearance_in_penetration_is_no_shallower_than_any_pair_its_bounds_admit():
