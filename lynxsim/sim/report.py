@@ -114,7 +114,8 @@ class RunReport:
         floor_contacts: Robot geoms that touched the table or floor.
         healthy: No MuJoCo warning and no NaN during the run.
         warnings: MuJoCo warning counts by name (only those that fired).
-        diverged_at_s: Time at which the state became non-finite, or None.
+        diverged_at_s: End of the step in which the state diverged (not finite, or
+            so bad that MuJoCo reset it) [s]; the log ends before it. None if it did not.
         metrics: Robot-specific figures (e.g. the 3-RRR's loop closure), or None.
     """
 

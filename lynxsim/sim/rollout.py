@@ -117,7 +117,8 @@ class PlaybackLog:
         settle_s: Hold time after it [s].
         tool_target: The final commanded tool point, (3,) [m].
         warnings: MuJoCo warning counts by name (only those that fired).
-        diverged_at_s: Time at which the state became non-finite, or None.
+        diverged_at_s: End of the step in which the state diverged (not finite, or
+            so bad that MuJoCo reset it) [s]; the log ends before it. None if it did not.
         channels: Robot-specific per-step records, each (S,) (see the robot's adapter).
     """
 
@@ -225,8 +226,12 @@ def _fresh_run(
     record: StepRecords,
     on_step: StepHook | None,
     progress: ProgressFn | None,
+    clock: FloatArray,
 ) -> int:
     """Step with the positions and contacts brought to each new state (for a hook that reads them).
+
+    A step whose state is not finite, or whose time is not ``clock``'s (MuJoCo
+    found a bad state and reset the data, its time included), ends the record.
 
     Returns:
         How many steps were recorded (fewer than ``len(ctrl)`` if the state diverged).
@@ -236,7 +241,7 @@ def _fresh_run(
     for k in range(len(ctrl)):
         data.ctrl[ctrl_adr] = ctrl[k]
         mujoco.mj_step(model, data)
-        if not (np.isfinite(qpos).all() and np.isfinite(qvel).all()):
+        if data.time != clock[k] or not (np.isfinite(qpos).all() and np.isfinite(qvel).all()):
             return k
         record.state(k, data)
         record.pose(k, model, data)
@@ -244,6 +249,8 @@ def _fresh_run(
             on_step(k, data)
         if progress is not None and k % every == 0:
             progress(k / len(ctrl))
+    if progress is not None:
+        progress(1.0)
     return len(ctrl)
 
 
@@ -280,6 +287,8 @@ def _lagged_run(
         if progress is not None and k % every == 0:
             progress(k / len(ctrl))
     record.pose(len(ctrl) - 1, model, data)
+    if progress is not None:
+        progress(1.0)
 
 
 def whole_controls(base: FloatArray, adr: IntArray, values: FloatArray) -> FloatArray:
@@ -482,7 +491,7 @@ def finish_log(
         task: Task name for the log.
         trajectory: Trajectory type name for the log.
         warnings: MuJoCo warning counts by name, of the whole run (hold included).
-        diverged_at_s: Time at which the state became non-finite [s], or None.
+        diverged_at_s: End of the step in which the state diverged [s], or None.
 
     Returns:
         The :class:`PlaybackLog`.
@@ -560,8 +569,11 @@ def rollout(
     stamped with: ``mj_step`` leaves the positions and contacts of the state it
     started from, so those of step ``k`` are read after step ``k + 1`` (no
     position computed twice; with ``on_step``, or if MuJoCo resets a bad state,
-    they are computed after each step instead, the same records). The
-    clearances are computed after the run for all states at once
+    they are computed after each step instead, the same records). A run whose
+    state diverges (not finite, or so bad that MuJoCo resets the data inside
+    ``mj_step``) is logged up to the step before, with ``diverged_at_s`` set:
+    nothing after a reset describes the run. The clearances are computed after
+    the run for all states at once
     (:func:`~lynxsim.sim.collision.clearances_of_states`).
 
     Args:
@@ -600,6 +612,7 @@ def rollout(
     )
     ctrl_adr, ctrl = commands.ctrl_adr, commands.ctrl
     steps = len(ctrl)
+    clock = np.cumsum(np.full(steps, float(model.opt.timestep)))  # data.time: dt added per step
     rest_at_start(model, data, binding, commands.q_cmd[0])
     layout = None if on_step is not None else RecordingLayout.of(model, binding)
     start = _Snapshot(model) if on_step is None else None
@@ -616,7 +629,6 @@ def rollout(
             record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
             _lagged_run(model, data, ctrl_adr, ctrl, record, progress)
     recorded = steps
-    clock = np.cumsum(np.full(steps, float(model.opt.timestep)))  # data.time: dt added per step
     finite = bool(np.isfinite(data.qpos).all() and np.isfinite(data.qvel).all())
     if record is None or not finite or not np.array_equal(record.time, clock):
         # A bad state: MuJoCo resets it (time included) inside mj_step, so the
@@ -625,7 +637,7 @@ def rollout(
         if start is not None:
             start.restore(model, data)
         record = StepRecords(model, steps, binding.tool_site_id, binding.groups)
-        recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step, progress)
+        recorded = _fresh_run(model, data, ctrl_adr, ctrl, record, on_step, progress, clock)
     return finish_log(
         model,
         binding,
@@ -635,5 +647,5 @@ def rollout(
         task=task,
         trajectory=trajectory,
         warnings=mujoco_warnings(data),
-        diverged_at_s=None if recorded == steps else float(data.time),
+        diverged_at_s=None if recorded == steps else float(clock[recorded]),
     )

@@ -271,11 +271,13 @@ def test_a_step_hook_sees_each_state_posed_and_changes_nothing():
     np.testing.assert_array_equal(np.array(seen), with_hook.tool)
 
 
-def test_a_run_that_mujoco_resets_is_recorded_state_by_state():
+def test_a_run_that_mujoco_resets_ends_where_it_diverged():
     """Servos far too stiff: MuJoCo finds bad accelerations and resets the state in mj_step.
 
-    The records must still describe each logged state (the lagged records are
-    replaced by a replay that poses every state), as with a step hook.
+    The log ends before the step that MuJoCo reset (what follows a reset is
+    the model's rest pose, not the run), says when it diverged, and its
+    records describe each logged state (the lagged records are replaced by a
+    replay that poses every state), as with a step hook.
     """
     model, q_cmd = _command(PICK_AND_PLACE, TrajectoryKind.QUINTIC)
     model.actuator_gainprm[:5, 0] *= 1e9
@@ -291,8 +293,12 @@ def test_a_run_that_mujoco_resets_is_recorded_state_by_state():
         mujoco.set_mju_user_warning(previous)
     assert log.warnings["badqacc"]
     assert any("QACC" in m for m in messages)
-    assert (np.diff(log.time_s) <= 0.0).any()  # reset during the record: time starts again
+    dt = model.opt.timestep
+    assert 0 < log.steps < 300
+    np.testing.assert_array_equal(log.time_s, np.cumsum(np.full(log.steps, dt)))
+    assert log.diverged_at_s == pytest.approx((log.steps + 1) * dt, abs=1e-12)
     _assert_same_log(log, hooked)
+    assert hooked.diverged_at_s == log.diverged_at_s
     data = mujoco.MjData(model)
     for k in range(log.steps):
         data.qpos[:] = log.qpos[k]

@@ -148,3 +148,4 @@ def test_a_python_loop_run_reports_progress_too():
     assert 15 <= len(heard) <= 25  # about every 5 %
     assert heard == sorted(heard)
     assert heard[0] == 0.0
+    assert heard[-1] == 1.0  # the end is heard, as on the native path
