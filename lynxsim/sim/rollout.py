@@ -28,7 +28,15 @@ import numpy as np
 import numpy.typing as npt
 from mujoco import rollout as native
 
-from lynxsim.errors import InvalidInputError, LimitViolationError
+from lynxsim.bounds import MAX_SEGMENT_S
+from lynxsim.errors import (
+    InvalidInputError,
+    InvalidTypeError,
+    LimitViolationError,
+    NonFiniteInputError,
+    short,
+)
+from lynxsim.inputs import number_in_range, real_array
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
 from lynxsim.sim.overlap import cpu_count, share_stepping
@@ -422,11 +430,19 @@ def plan_commands(
     """Check a run's commands and lay out the controls of every step (see :func:`rollout`).
 
     Raises:
-        InvalidInputError: Shapes disagree, or commands are not finite.
-        LimitViolationError: A command leaves its joint's range (names joint and time).
+        InvalidInputError: Shapes disagree; commands, hold times or gripper
+            openings are not finite real numbers, or a hold time is negative.
+        LimitViolationError: A command or gripper opening leaves its range
+            (names joint and time).
     """
-    q_cmd = np.asarray(q_cmd, dtype=float)
-    tool_ref = np.asarray(tool_ref, dtype=float)
+    settle_s = number_in_range(settle_s, "settle_s", 0.0, MAX_SEGMENT_S, "s")
+    presettle_s = number_in_range(presettle_s, "presettle_s", 0.0, MAX_SEGMENT_S, "s")
+    if gripper_cmd is not None and not callable(gripper_cmd):
+        raise InvalidTypeError(
+            f"gripper_cmd must be a function of time [s] or None, got {short(gripper_cmd)}"
+        )
+    q_cmd = real_array(q_cmd, "q_cmd")
+    tool_ref = real_array(tool_ref, "tool_ref")
     n = len(binding.actuator_ids)
     if q_cmd.ndim != 2 or q_cmd.shape[1] != n or len(q_cmd) == 0:
         raise InvalidInputError(f"q_cmd must have shape (T, {n}), got {q_cmd.shape}")
@@ -445,9 +461,10 @@ def plan_commands(
     gripper = binding.gripper_actuator_id
     if gripper is not None and gripper_cmd is not None:
         ctrl_adr = np.append(ctrl_adr, gripper)
-        opening = [gripper_cmd((k - presettle_steps) * dt) for k in range(presettle_steps)]
-        hold = np.column_stack([hold, opening])
-        ctrl = np.column_stack([ctrl, [gripper_cmd(k * dt) for k in range(steps)]])
+        times = np.arange(-presettle_steps, steps, dtype=float) * dt
+        opening = _gripper_openings(model, gripper, gripper_cmd, times, joint=n + 1)
+        hold = np.column_stack([hold, opening[:presettle_steps]])
+        ctrl = np.column_stack([ctrl, opening[presettle_steps:]])
     return RunCommands(
         q_cmd=q_cmd,
         tool_ref=tool_ref,
@@ -456,6 +473,49 @@ def plan_commands(
         ctrl=ctrl,
         settle_steps=settle_steps,
     )
+
+
+def _gripper_openings(
+    model: mujoco.MjModel,
+    actuator: int,
+    gripper_cmd: Callable[[float], float],
+    times: FloatArray,
+    *,
+    joint: int,
+) -> FloatArray:
+    """The gripper's commanded openings at ``times`` [s], (T,) [m], checked before any step.
+
+    Raises:
+        InvalidInputError: An opening is not one real number.
+        NonFiniteInputError: An opening is NaN or infinite.
+        LimitViolationError: An opening leaves the actuator's control range.
+    """
+    values = real_array([gripper_cmd(t) for t in times.tolist()], "gripper_cmd's openings")
+    if values.shape != times.shape:
+        raise InvalidInputError(
+            f"gripper_cmd must return one number per time, got shape {values.shape[1:]}"
+        )
+    bad = np.flatnonzero(~np.isfinite(values))
+    if len(bad):
+        k = int(bad[0])
+        raise NonFiniteInputError(
+            f"gripper_cmd must be finite, got {values[k]!r} at t = {times[k]:.3f} s"
+        )
+    lo, hi = (float(v) for v in model.actuator_ctrlrange[actuator])
+    excess = np.maximum(lo - values, values - hi)
+    k = int(np.argmax(excess))
+    if excess[k] > RANGE_TOL:
+        raise LimitViolationError(
+            f"gripper opening {values[k]:g} m at t = {times[k]:.3f} s leaves its range "
+            f"[{lo:g}, {hi:g}] m; refused before playback",
+            joint=joint,
+            quantity="position",
+            time=float(times[k]),
+            segment=-1,
+            value=float(values[k]),
+            limit=lo if values[k] < lo else hi,
+        )
+    return values
 
 
 def rest_at_start(

@@ -12,7 +12,7 @@ import pytest
 
 from lynxsim.arm import tool_pose
 from lynxsim.arm.task import build_trajectory
-from lynxsim.errors import LimitViolationError
+from lynxsim.errors import InvalidInputError, LimitViolationError, NonFiniteInputError
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
@@ -133,6 +133,53 @@ def test_commands_outside_the_joint_ranges_are_refused_before_playback():
             model, data, arm_binding(model), q_cmd, np.zeros((100, 3)), task="t", trajectory="t"
         )
     assert data.time == 0.0  # nothing was simulated
+
+
+def _refused(model, **kwargs):
+    """Play 100 resting steps with ``kwargs``; what was refused must leave the data unstepped."""
+    data = mujoco.MjData(model)
+    try:
+        rollout(
+            model,
+            data,
+            arm_binding(model),
+            np.zeros((100, 5)) + np.radians([0, 45, -90, 0, 0]),
+            np.zeros((100, 3)),
+            task="t",
+            trajectory="t",
+            **kwargs,
+        )
+    finally:
+        assert data.time == 0.0  # nothing was simulated
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "message"),
+    [
+        ({"settle_s": math.nan}, NonFiniteInputError, "settle_s must be finite"),
+        ({"settle_s": math.inf}, NonFiniteInputError, "settle_s must be finite"),
+        ({"settle_s": -0.5}, InvalidInputError, "settle_s must be between 0 and 3600 s"),
+        ({"settle_s": 1e30}, InvalidInputError, "settle_s must be between"),
+        ({"settle_s": "0.5"}, InvalidInputError, "settle_s must be a number"),
+        ({"settle_s": None}, InvalidInputError, "settle_s must be a number"),
+        ({"settle_s": True}, InvalidInputError, "settle_s must be a number"),
+        ({"presettle_s": -1.0}, InvalidInputError, "presettle_s must be between"),
+        ({"gripper_cmd": 0.02}, InvalidInputError, "gripper_cmd must be a function"),
+        ({"gripper_cmd": lambda t: math.nan}, NonFiniteInputError, "gripper_cmd must be finite"),
+        ({"gripper_cmd": lambda t: None}, InvalidInputError, "openings must be real numbers"),
+        ({"gripper_cmd": lambda t: "x"}, InvalidInputError, "openings must be real numbers"),
+        ({"gripper_cmd": lambda t: np.zeros(2)}, InvalidInputError, "one number per time"),
+        (
+            {"gripper_cmd": lambda t: 0.05},
+            LimitViolationError,
+            r"gripper opening 0\.05 m at t = -0\.500 s leaves its range \[0, 0\.03\] m",
+        ),
+        ({"gripper_cmd": lambda t: -1.0 if t > 0.1 else 0.0}, LimitViolationError, "t = 0.102 s"),
+    ],
+)
+def test_bad_hold_times_and_gripper_openings_are_refused_before_playback(kwargs, error, message):
+    with pytest.raises(error, match=message):
+        _refused(load_arm_scene(REPORT_SCENE), **kwargs)
 
 
 def test_report_round_trips_through_json(tmp_path, pick_and_place):
