@@ -43,6 +43,7 @@ from mujoco import batch as mjbatch
 
 from lynxsim.arm import tool_pose
 from lynxsim.errors import InvalidInputError
+from lynxsim.inputs import count
 from lynxsim.sim.arm.playback import arm_binding, physics_grid
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.overlap import cpu_count, share_stepping
@@ -63,9 +64,12 @@ from lynxsim.sim.sensors import RecordingLayout
 from lynxsim.sim.summary import Playback, summarize
 from lynxsim.traj import Trajectory
 
-__all__ = ["BatchRun", "batch_rollout", "play_arm_batch"]
+__all__ = ["MAX_THREADS", "BatchRun", "batch_rollout", "play_arm_batch"]
 
 FloatArray = npt.NDArray[np.float64]
+
+MAX_THREADS = 1024
+"""Most threads a batch may be asked for (it uses no more than one per run)."""
 
 _TIME = mujoco.mjtState.mjSTATE_TIME
 _RECORD = (_TIME, "qpos", "actuator_force")
@@ -114,8 +118,9 @@ def batch_rollout(
         model: The model of every run.
         binding: What to drive and watch.
         runs: The runs.
-        nthread: Threads to use, the caller's included (None: one per CPU);
-            the caller's thread records, and steps when it has nothing to record.
+        nthread: Threads to use, the caller's included (None: one per CPU; never
+            more than one per run); the caller's thread records, and steps
+            when it has nothing to record.
         settle_s: Hold time after each trajectory [s].
         presettle_s: Hold time before it, unrecorded [s].
         progress: Called with the fraction of all runs' recorded steps done,
@@ -125,15 +130,14 @@ def batch_rollout(
         One log per run, in order.
 
     Raises:
-        InvalidInputError: ``nthread`` below 1, or a run's shapes disagree or
+        InvalidInputError: ``nthread`` is not an integer from 1 to
+            :data:`MAX_THREADS`, or a run's shapes disagree or
             its commands are not finite (before anything is stepped).
         LimitViolationError: A run's command leaves its joint's range (names
             joint and time; before anything is stepped).
     """
-    if nthread is not None and nthread < 1:
-        raise InvalidInputError(
-            f"nthread must be at least 1 (or None for every CPU), got {nthread}"
-        )
+    threads = cpu_count() if nthread is None else count(nthread, "nthread", 1, MAX_THREADS)
+    runs = list(runs)
     commands = [
         plan_commands(
             model,
@@ -148,7 +152,6 @@ def batch_rollout(
     ]
     if not commands:
         return []
-    threads = cpu_count() if nthread is None else nthread
     layout = RecordingLayout.of(model, binding)
     data = mujoco.MjData(model)
     lengths = [len(c.ctrl) for c in commands]
@@ -198,12 +201,12 @@ def batch_rollout(
             diverged_at_s=None,
         )
 
-    count = min(len(commands), threads)  # groups: one per thread (measured better than 2 or 3)
+    groups = min(len(commands), threads)  # one per thread (measured better than 2 or 3)
     sources = [
-        _stepped(model, binding, commands, list(range(g, len(commands), count)), layout is None)
-        for g in range(count)
+        _stepped(model, binding, commands, list(range(g, len(commands), groups)), layout is None)
+        for g in range(groups)
     ]
-    share_stepping(sources, record, helpers=threads - 1)
+    share_stepping(sources, record, helpers=groups - 1)
     return [log for log in logs if log is not None]
 
 

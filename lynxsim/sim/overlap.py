@@ -132,13 +132,12 @@ def share_stepping(
             assert g is not None
             advance(g)
 
-    threads = [
-        threading.Thread(target=help_out, name=f"lynxsim-stepper-{i}", daemon=True)
-        for i in range(helpers)
-    ]
-    for thread in threads:
-        thread.start()
+    threads: list[threading.Thread] = []
     try:
+        for i in range(helpers):  # a helper that cannot start stops those that did
+            thread = threading.Thread(target=help_out, name=f"lynxsim-stepper-{i}", daemon=True)
+            thread.start()
+            threads.append(thread)
         ended = 0
         while ended < len(sources):
             try:

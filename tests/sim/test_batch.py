@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import threading
 from pathlib import Path
 from typing import Any
 
@@ -137,11 +138,35 @@ def test_commands_outside_the_joint_ranges_are_refused_before_stepping():
         batch_rollout(model, arm_binding(model), [good, bad])
 
 
-@pytest.mark.parametrize("nthread", [0, -1])
-def test_thread_count_below_one_is_refused(nthread):
+@pytest.mark.parametrize(
+    ("nthread", "message"),
+    [
+        (0, "between 1 and 1,024, got 0"),
+        (-1, "between 1 and 1,024, got -1"),
+        (2000, "between 1 and 1,024, got 2,000"),
+        (2.5, "an integer, got 2.5"),
+        ("2", "an integer, got '2'"),
+        (True, "an integer, got True"),
+    ],
+)
+def test_thread_counts_that_are_not_whole_numbers_in_range_are_refused(nthread, message):
     model = load_arm_scene()
-    with pytest.raises(InvalidInputError, match=rf"nthread must be at least 1.*got {nthread}"):
+    with pytest.raises(InvalidInputError, match=f"nthread must be {message}"):
         batch_rollout(model, arm_binding(model), [], nthread=nthread)
+
+
+def test_a_batch_uses_no_more_threads_than_runs_and_takes_any_iterable():
+    """Many threads asked for two runs: two are used (no idle helper is started)."""
+    model = load_arm_scene()
+    run = BatchRun(np.zeros((50, 5)), np.zeros((50, 3)), task="t", trajectory="t")
+    seen: set[str] = set()
+
+    def watch(fraction: float) -> None:
+        seen.update(t.name for t in threading.enumerate() if t.name.startswith("lynxsim-"))
+
+    logs = batch_rollout(model, arm_binding(model), iter([run, run]), nthread=64, progress=watch)
+    assert len(logs) == 2
+    assert seen <= {"lynxsim-stepper-0"}
 
 
 def test_gripper_schedules_must_match_the_trajectories():

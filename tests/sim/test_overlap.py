@@ -108,6 +108,25 @@ def test_a_helper_steps_while_the_caller_consumes():
     assert any(a < d and c < b for a, b in made for c, d in used)
 
 
+def test_a_helper_that_cannot_start_stops_the_others(monkeypatch):
+    """Out of threads after one helper started: that one is stopped, the error raised."""
+    started = 0
+    start = threading.Thread.start
+
+    def start_twice(thread: threading.Thread) -> None:
+        nonlocal started
+        started += 1
+        if started > 1:
+            raise RuntimeError("can't start new thread")
+        start(thread)
+
+    monkeypatch.setattr(threading.Thread, "start", start_twice)
+    with pytest.raises(RuntimeError, match="can't start new thread"):
+        share_stepping([Source(0, 20, 0.001, [])], lambda item: None, helpers=3)
+    monkeypatch.undo()
+    assert not _helpers_alive()
+
+
 @pytest.mark.parametrize("helpers", [0, 1, 2])
 def test_a_failing_source_stops_everything_and_raises(helpers):
     def failing() -> Iterator[int]:
