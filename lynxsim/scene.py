@@ -15,9 +15,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from lynxsim.bounds import MAX_ANGLE_RAD, MAX_COORDINATE_M
 from lynxsim.errors import InvalidInputError
 
 __all__ = [
+    "MAX_CUBE_MASS_KG",
+    "MAX_FRICTION",
+    "MIN_CUBE_MASS_KG",
+    "MIN_SIZE_M",
     "REPORT_CUBE",
     "REPORT_CYLINDER",
     "REPORT_SCENE",
@@ -30,6 +35,17 @@ __all__ = [
     "Sphere",
     "Table",
 ]
+
+
+MIN_SIZE_M = 1e-4
+"""Smallest size of anything in a scene (radius, height, edge) [m]; the largest is
+:data:`lynxsim.bounds.MAX_COORDINATE_M`, which also bounds every coordinate."""
+MIN_CUBE_MASS_KG = 1e-4
+"""Lightest cube [kg] (MuJoCo refuses a body of almost no mass or inertia)."""
+MAX_CUBE_MASS_KG = 100.0
+"""Heaviest cube [kg]."""
+MAX_FRICTION = 10.0
+"""Largest sliding friction coefficient of the cube [-]."""
 
 
 def _finite(owner: str, **values: float) -> None:
@@ -51,10 +67,29 @@ def _positive(owner: str, unit: str, **values: float) -> None:
             raise InvalidInputError(f"{owner}: {key} must be positive, got {value!r}{unit}")
 
 
+def _within(owner: str, low: float, high: float, unit: str, **values: float) -> None:
+    _finite(owner, **values)
+    for key, value in values.items():
+        if not low <= value <= high:
+            raise InvalidInputError(
+                f"{owner}: {key} must lie within {low:g}..{high:g}{unit}, got {value!r}{unit}"
+            )
+
+
+def _sizes(owner: str, **values: float) -> None:
+    _within(owner, MIN_SIZE_M, MAX_COORDINATE_M, " m", **values)
+
+
 def _vector(owner: str, key: str, value: tuple[float, ...], n: int) -> None:
+    """A tuple of n coordinates [m], each within +-:data:`~lynxsim.bounds.MAX_COORDINATE_M`."""
     if not isinstance(value, tuple) or len(value) != n:
         raise InvalidInputError(f"{owner}: {key} must be a tuple of {n} numbers, got {value!r}")
-    _finite(owner, **{f"{key}[{i}]": v for i, v in enumerate(value)})
+    values = {f"{key}[{i}]": v for i, v in enumerate(value)}
+    _within(owner, -MAX_COORDINATE_M, MAX_COORDINATE_M, " m", **values)
+
+
+def _angle(owner: str, **values: float) -> None:
+    _within(owner, -MAX_ANGLE_RAD, MAX_ANGLE_RAD, " rad", **values)
 
 
 def _check_name(kind: str, name: str) -> None:
@@ -69,8 +104,8 @@ class Cylinder:
     Attributes:
         name: Unique name in its scene.
         position: Centre of the bottom face (x, y, z) [m].
-        radius: Radius [m], > 0.
-        height: Height [m], > 0.
+        radius: Radius [m], within :data:`MIN_SIZE_M` .. 10 m.
+        height: Height [m], within :data:`MIN_SIZE_M` .. 10 m.
     """
 
     name: str
@@ -82,7 +117,7 @@ class Cylinder:
         _check_name("cylinder", self.name)
         owner = f"cylinder {self.name!r}"
         _vector(owner, "position", self.position, 3)
-        _positive(owner, " m", radius=self.radius, height=self.height)
+        _sizes(owner, radius=self.radius, height=self.height)
 
     @property
     def shape(self) -> str:
@@ -107,7 +142,8 @@ class Box:
     Attributes:
         name: Unique name in its scene.
         position: Centre of the bottom face (x, y, z) [m].
-        size: Full extents along its own x, y, z [m], each > 0.
+        size: Full extents along its own x, y, z [m], each within
+            :data:`MIN_SIZE_M` .. 10 m.
         yaw: Rotation about the vertical axis, counter-clockwise seen from +z [rad].
     """
 
@@ -121,8 +157,8 @@ class Box:
         owner = f"box {self.name!r}"
         _vector(owner, "position", self.position, 3)
         _vector(owner, "size", self.size, 3)
-        _positive(owner, " m", **{f"size[{i}]": v for i, v in enumerate(self.size)})
-        _finite(owner, yaw=self.yaw)
+        _sizes(owner, **{f"size[{i}]": v for i, v in enumerate(self.size)})
+        _angle(owner, yaw=self.yaw)
 
     @property
     def shape(self) -> str:
@@ -152,7 +188,7 @@ class Sphere:
     Attributes:
         name: Unique name in its scene.
         position: Its centre (x, y, z) [m].
-        radius: Radius [m], > 0.
+        radius: Radius [m], within :data:`MIN_SIZE_M` .. 10 m.
     """
 
     name: str
@@ -163,7 +199,7 @@ class Sphere:
         _check_name("sphere", self.name)
         owner = f"sphere {self.name!r}"
         _vector(owner, "position", self.position, 3)
-        _positive(owner, " m", radius=self.radius)
+        _sizes(owner, radius=self.radius)
 
     @property
     def shape(self) -> str:
@@ -200,10 +236,10 @@ class Table:
     thickness: float = 0.04
 
     def __post_init__(self) -> None:
-        _finite("table", top_z=self.top_z)
+        _within("table", -MAX_COORDINATE_M, MAX_COORDINATE_M, " m", top_z=self.top_z)
         _vector("table", "center", self.center, 2)
         _vector("table", "size", self.size, 2)
-        _positive("table", " m", size_x=self.size[0], size_y=self.size[1], thickness=self.thickness)
+        _sizes("table", size_x=self.size[0], size_y=self.size[1], thickness=self.thickness)
 
 
 @dataclass(frozen=True)
@@ -212,10 +248,10 @@ class Cube:
 
     Attributes:
         position: Its centre (x, y, z) at the start [m].
-        size: Edge length [m], > 0.
+        size: Edge length [m], within :data:`MIN_SIZE_M` .. 10 m.
         yaw: Rotation about the vertical at the start [rad].
-        mass: Mass [kg], > 0.
-        friction: Sliding friction coefficient [-], > 0.
+        mass: Mass [kg], within :data:`MIN_CUBE_MASS_KG` .. :data:`MAX_CUBE_MASS_KG`.
+        friction: Sliding friction coefficient [-], > 0 and at most :data:`MAX_FRICTION`.
     """
 
     position: tuple[float, float, float] = (0.0, 0.3, 0.0)
@@ -226,10 +262,11 @@ class Cube:
 
     def __post_init__(self) -> None:
         _vector("cube", "position", self.position, 3)
-        _positive("cube", " m", size=self.size)
-        _positive("cube", " kg", mass=self.mass)
+        _sizes("cube", size=self.size)
+        _within("cube", MIN_CUBE_MASS_KG, MAX_CUBE_MASS_KG, " kg", mass=self.mass)
         _positive("cube", "", friction=self.friction)
-        _finite("cube", yaw=self.yaw)
+        _within("cube", 0.0, MAX_FRICTION, "", friction=self.friction)
+        _angle("cube", yaw=self.yaw)
 
 
 TABLE = Table()

@@ -71,8 +71,9 @@ cube positions) within +-``MAX_COORDINATE_M`` (10 m, 10000 mm), every segment
 duration within ``MIN_SEGMENT_S`` .. ``MAX_SEGMENT_S`` (1 ms to 1 h), every angle
 (``pitch_deg``, ``roll_deg``, ``q_deg``, ``alpha_deg``, ``yaw_deg``) within
 +-``MAX_ANGLE_RAD`` (two turns, +-720 deg; larger ones only make the arithmetic
-lose precision). Local to task files: scene sizes (radius, height, edge) 0.1 mm
-up to the coordinate bound, the cube's mass at most 100 kg and its friction at most 10.
+lose precision). Those of every scene (:mod:`lynxsim.scene`): sizes (radius,
+height, edge) 0.1 mm up to the coordinate bound, the cube's mass 0.1 g to 100 kg
+and its friction at most 10.
 
 Text. Names (the task's ``name``, pose and obstacle names) are 1 to 100
 characters; the ``description`` at most 1000. Both are printable text, one
@@ -101,7 +102,20 @@ from typing import Any
 from lynxsim.bounds import MAX_ANGLE_RAD, MAX_COORDINATE_M, MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, TaskFileError
 from lynxsim.robots import ROBOTS, PoseSchema
-from lynxsim.scene import REPORT_CUBE, TABLE, Box, Cube, Cylinder, Obstacle, Scene, Sphere
+from lynxsim.scene import (
+    MAX_CUBE_MASS_KG,
+    MAX_FRICTION,
+    MIN_CUBE_MASS_KG,
+    MIN_SIZE_M,
+    REPORT_CUBE,
+    TABLE,
+    Box,
+    Cube,
+    Cylinder,
+    Obstacle,
+    Scene,
+    Sphere,
+)
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.waypoints import ArmPose, JointPose
 
@@ -182,12 +196,8 @@ _MAX_NAME_CHARS = 100
 """Longest name (task, pose, obstacle) [characters]."""
 _MAX_DESCRIPTION_CHARS = 1000
 """Longest description [characters]."""
-_MIN_SIZE_MM = 0.1
-"""Smallest scene size (radius, height, edge) [mm]."""
-_MAX_CUBE_MASS_KG = 100.0
-"""Heaviest cube a task may ask for [kg]."""
-_MAX_FRICTION = 10.0
-"""Largest sliding friction coefficient of the cube [-]."""
+_MIN_SIZE_MM = MIN_SIZE_M * 1e3
+"""Smallest scene size (radius, height, edge) [mm]: :data:`lynxsim.scene.MIN_SIZE_M`."""
 
 
 _SHOW = reprlib.Repr()
@@ -452,11 +462,14 @@ def _cube(r: _Reader, item: object) -> Cube:
     if "yaw_deg" in raw:
         yaw = r.angle_deg(raw["yaw_deg"], "cube.yaw_deg")
     mass = r.positive(raw.get("mass_kg", REPORT_CUBE.mass), "cube.mass_kg")
-    if mass > _MAX_CUBE_MASS_KG:
-        raise r.fail("cube.mass_kg", f"must be at most {_MAX_CUBE_MASS_KG:g} kg, got {mass!r}")
+    if not MIN_CUBE_MASS_KG <= mass <= MAX_CUBE_MASS_KG:
+        raise r.fail(
+            "cube.mass_kg",
+            f"must lie within {MIN_CUBE_MASS_KG:g}..{MAX_CUBE_MASS_KG:g} kg, got {mass!r}",
+        )
     friction = r.positive(raw.get("friction", REPORT_CUBE.friction), "cube.friction")
-    if friction > _MAX_FRICTION:
-        raise r.fail("cube.friction", f"must be at most {_MAX_FRICTION:g}, got {friction!r}")
+    if friction > MAX_FRICTION:
+        raise r.fail("cube.friction", f"must be at most {MAX_FRICTION:g}, got {friction!r}")
     if position[2] - size / 2 < TABLE.top_z:
         raise r.fail(
             "cube.position_mm[2]" if "position_mm" in raw else "cube.size_mm",

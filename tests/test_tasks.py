@@ -570,9 +570,15 @@ _CYLINDER_KEYS = "a cylinder takes: name, shape, position_mm, radius_mm, height_
         ("size_mm = 25.0", "size_mm = 25.0\nmass_kg = 0", "cube.mass_kg", "must be positive"),
         (
             "size_mm = 25.0",
+            "size_mm = 25.0\nmass_kg = 1e-15",
+            "cube.mass_kg",
+            "must lie within 0.0001..100 kg",
+        ),
+        (
+            "size_mm = 25.0",
             "size_mm = 25.0\nmass_kg = 1000.0",
             "cube.mass_kg",
-            "must be at most 100 kg",
+            "must lie within 0.0001..100 kg",
         ),
         ("size_mm = 25.0", "size_mm = 25.0\nfriction = -1", "cube.friction", "must be positive"),
         ("size_mm = 25.0", "size_mm = 25.0\nfriction = 11", "cube.friction", "at most 10"),

@@ -50,6 +50,7 @@ __all__ = [
     "ProgressFn",
     "RunCommands",
     "StepHook",
+    "check_data",
     "chunk_bounds",
     "finish_log",
     "mujoco_warnings",
@@ -518,6 +519,31 @@ def _gripper_openings(
     return values
 
 
+def check_data(model: mujoco.MjModel, data: object) -> None:
+    """Refuse a ``data`` that is not an ``MjData`` of ``model`` (MuJoCo would overrun its arrays).
+
+    Raises:
+        InvalidInputError: ``data`` is no ``MjData``, or its sizes are another model's.
+    """
+    if not isinstance(data, mujoco.MjData):
+        raise InvalidTypeError(f"data must be a mujoco.MjData, got {short(data)}")
+    sizes = {
+        "qpos": (data.qpos.size, model.nq),
+        "qvel": (data.qvel.size, model.nv),
+        "act": (data.act.size, model.na),
+        "ctrl": (data.ctrl.size, model.nu),
+        "sensordata": (data.sensordata.size, model.nsensordata),
+        "xpos": (len(data.xpos), model.nbody),
+        "geom_xpos": (len(data.geom_xpos), model.ngeom),
+        "site_xpos": (len(data.site_xpos), model.nsite),
+    }
+    for name, (has, wants) in sizes.items():
+        if has != wants:
+            raise InvalidInputError(
+                f"data was made for another model: its {name} has {has} values, the model's {wants}"
+            )
+
+
 def rest_at_start(
     model: mujoco.MjModel, data: mujoco.MjData, binding: RobotBinding, q0: FloatArray
 ) -> None:
@@ -658,9 +684,11 @@ def rollout(
         The :class:`PlaybackLog`.
 
     Raises:
-        InvalidInputError: Shapes disagree, or commands are not finite.
+        InvalidInputError: Shapes disagree, commands (hold times, gripper
+            openings) are not finite, or ``data`` is not the model's.
         LimitViolationError: A command leaves its joint's range (names joint and time).
     """
+    check_data(model, data)
     commands = plan_commands(
         model,
         binding,

@@ -182,6 +182,19 @@ def test_bad_hold_times_and_gripper_openings_are_refused_before_playback(kwargs,
         _refused(load_arm_scene(REPORT_SCENE), **kwargs)
 
 
+def test_data_of_another_model_is_refused_before_playback():
+    model = load_arm_scene(REPORT_SCENE)
+    other = mujoco.MjData(load_arm_scene(NO_OBSTACLE.without_cube()))
+    trajectory = generate(
+        "quintic", [ArmPose((0.0, 0.25, 0.3), 0.0), ArmPose((0.1, 0.25, 0.3), 0.0)], 2.0
+    )
+    with pytest.raises(InvalidInputError, match="data was made for another model: its qpos has"):
+        play_arm(model, trajectory, task="t", data=other)
+    assert other.time == 0.0
+    with pytest.raises(InvalidInputError, match=r"data must be a mujoco\.MjData, got 'x'"):
+        play_arm(model, trajectory, task="t", data="x")
+
+
 def test_report_round_trips_through_json(tmp_path, pick_and_place):
     trajectory = build_trajectory(pick_and_place, TrajectoryKind.QUINTIC)
     report = play_arm(load_arm_scene(NO_CUBE), trajectory, task="p").report
