@@ -21,6 +21,7 @@ __all__ = [
     "MAX_COORDINATE_M",
     "MAX_EPISODES",
     "MAX_FPS",
+    "MAX_JOBS",
     "MAX_RATE_HZ",
     "MAX_SAMPLES",
     "MAX_SEGMENT_S",
@@ -60,6 +61,8 @@ MAX_RANDOM_OBSTACLES = 4
 """Most obstacles an env episode with randomised obstacles may have."""
 MAX_STEPS = 100_000_000
 """Most physics steps of one run (about 55 h of simulated time at 2 ms)."""
+MAX_JOBS = 256
+"""Most worker processes of a sweep."""
 
 
 def check_range(value: float, name: str, low: float, high: float, unit: str = "") -> float:

@@ -9,6 +9,7 @@ import sys
 from collections import Counter
 from pathlib import Path
 
+from lynxsim.bounds import MAX_JOBS
 from lynxsim.cli.units import bounded_int
 from lynxsim.errors import InvalidInputError
 
@@ -122,7 +123,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     )
     p.add_argument(
         "--jobs",
-        type=bounded_int(1, 256),
+        type=bounded_int(1, MAX_JOBS),
         default=os.cpu_count() or 1,
         help="--backend local: worker processes (default: the CPU count)",
     )

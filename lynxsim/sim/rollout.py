@@ -36,7 +36,7 @@ from lynxsim.errors import (
     NonFiniteInputError,
     short,
 )
-from lynxsim.inputs import number_in_range, real_array
+from lynxsim.inputs import instance, number_in_range, real_array
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
 from lynxsim.sim.overlap import cpu_count, share_stepping
@@ -315,6 +315,8 @@ def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     ``_CHUNK_LAST``): the records of the first chunk wait for its stepping,
     and those of the last are made after all stepping.
     """
+    if steps <= 0:
+        return []
     up = [_CHUNK_FIRST << k for k in range((_CHUNK_MOST // _CHUNK_FIRST).bit_length() - 1)]
     down = [_CHUNK_LAST << k for k in range((_CHUNK_MOST // _CHUNK_LAST).bit_length() - 2, -1, -1)]
     middle = steps - sum(up) - sum(down)
@@ -689,6 +691,8 @@ def rollout(
         LimitViolationError: A command leaves its joint's range (names joint and time).
     """
     check_data(model, data)
+    instance(task, str, "task")
+    instance(trajectory, str, "trajectory")
     commands = plan_commands(
         model,
         binding,

@@ -30,8 +30,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Protocol
 
+from lynxsim.bounds import MAX_JOBS
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import file_stem, safe_stem
+from lynxsim.inputs import count
 from lynxsim.scene import Box, Obstacle, Scene
 from lynxsim.sim.report import RunReport
 from lynxsim.sweep.placements import PlacementJudge, Verdict
@@ -352,10 +354,16 @@ class LocalBackend:
     """Shards computed in this process (``jobs == 1``) or in a pool of worker processes.
 
     Attributes:
-        jobs: Worker processes (1: none).
+        jobs: Worker processes (1: none), an integer from 1 to :data:`lynxsim.bounds.MAX_JOBS`.
+
+    Raises:
+        InvalidInputError: ``jobs`` is not such an integer.
     """
 
     jobs: int = 1
+
+    def __post_init__(self) -> None:
+        count(self.jobs, "jobs", 1, MAX_JOBS)
 
     def run(
         self,

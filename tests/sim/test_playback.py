@@ -182,6 +182,36 @@ def test_bad_hold_times_and_gripper_openings_are_refused_before_playback(kwargs,
         _refused(load_arm_scene(REPORT_SCENE), **kwargs)
 
 
+@pytest.mark.parametrize(
+    ("duration", "dt", "error", "message"),
+    [
+        (-1.0, 0.002, InvalidInputError, "duration_s must be positive"),
+        (1.0, 0.0, InvalidInputError, "dt must be positive"),
+        (math.nan, 0.002, NonFiniteInputError, "duration_s must be finite"),
+        ("1", 0.002, InvalidInputError, "duration_s must be a number"),
+        (1e9, 0.002, InvalidInputError, "over 100,000,000 steps"),
+    ],
+)
+def test_physics_grid_refuses_what_is_no_duration(duration, dt, error, message):
+    with pytest.raises(error, match=message):
+        physics_grid(duration, dt)
+
+
+@pytest.mark.parametrize("name", ["task", "trajectory"])
+def test_run_names_must_be_text(name):
+    kwargs = {"task": "t", "trajectory": "t", name: None}
+    model = load_arm_scene(NO_CUBE)
+    with pytest.raises(InvalidInputError, match=f"{name} must be of type str"):
+        rollout(
+            model,
+            mujoco.MjData(model),
+            arm_binding(model),
+            np.zeros((10, 5)),
+            np.zeros((10, 3)),
+            **kwargs,
+        )
+
+
 def test_data_of_another_model_is_refused_before_playback():
     model = load_arm_scene(REPORT_SCENE)
     other = mujoco.MjData(load_arm_scene(NO_OBSTACLE.without_cube()))

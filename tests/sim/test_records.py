@@ -100,6 +100,10 @@ def test_a_run_without_a_helper_thread_logs_the_same(monkeypatch):
         np.testing.assert_array_equal(getattr(alone.log, name), getattr(shared.log, name))
 
 
+def test_no_steps_make_no_chunks():
+    assert chunk_bounds(0) == []
+
+
 @given(steps=st.integers(1, 20_000))
 def test_chunks_cover_the_run_in_order_short_at_either_end(steps):
     bounds = chunk_bounds(steps)

@@ -9,6 +9,7 @@ import sys
 import numpy as np
 import pytest
 
+from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sweep.runner import LocalBackend, compute_shard, groups, run_sweep, shards
@@ -128,3 +129,9 @@ def test_the_core_never_imports_ray(tmp_path):
         "assert 'ray' not in sys.modules, 'ray imported'\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True, cwd=tmp_path)
+
+
+@pytest.mark.parametrize("jobs", [0, 257, 2.5, "2", None, True])
+def test_a_local_backend_needs_a_whole_number_of_workers(jobs):
+    with pytest.raises(InvalidInputError, match="jobs must be"):
+        LocalBackend(jobs)
