@@ -7,13 +7,14 @@ import os
 import numpy as np
 
 from lynxsim.arm.workspace import WorkspaceSamples
-from lynxsim.plots.style import new_figure, save_figure
+from lynxsim.plots.style import new_figure, plain_text, save_figure
 
 __all__ = ["plot_arm_workspace"]
 
 _MAX_POINTS_3D = 20_000
 
 
+@plain_text
 def plot_arm_workspace(
     samples: WorkspaceSamples, dest: str | os.PathLike[str], title: str | None = None
 ) -> None:

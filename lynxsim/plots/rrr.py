@@ -15,7 +15,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, Patch
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.plots.style import new_figure, save_figure
+from lynxsim.plots.style import new_figure, plain_text, save_figure
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array
 from lynxsim.rrr.ik import ik, leg_points
 from lynxsim.rrr.jacobian import singularity_measures
@@ -176,6 +176,7 @@ def view_extent(
     )
 
 
+@plain_text
 def plot_rrr_workspace(
     maps: Sequence[WorkspaceMap],
     dest: str | os.PathLike[str],
@@ -304,6 +305,7 @@ def plot_rrr_workspace(
     save_figure(fig, dest)
 
 
+@plain_text
 def plot_rrr_path(
     poses: npt.ArrayLike,
     dest: str | os.PathLike[str],
@@ -436,6 +438,7 @@ def plot_rrr_path(
     save_figure(fig, dest)
 
 
+@plain_text
 def plot_rrr_poses(
     poses: npt.ArrayLike,
     dest: str | os.PathLike[str],

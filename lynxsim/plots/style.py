@@ -1,8 +1,11 @@
-"""Shared figure set-up: a headless backend and atomic PNG saving."""
+"""Shared figure set-up: a headless backend, plain text and atomic PNG saving."""
 
 from __future__ import annotations
 
+import functools
 import os
+from collections.abc import Callable
+from typing import ParamSpec, TypeVar
 
 import matplotlib
 
@@ -12,7 +15,26 @@ from matplotlib.figure import Figure
 
 from lynxsim.fileio import atomic_path
 
-__all__ = ["new_figure", "save_figure"]
+__all__ = ["new_figure", "plain_text", "save_figure"]
+
+P = ParamSpec("P")
+R = TypeVar("R")
+
+
+def plain_text(plot: Callable[P, R]) -> Callable[P, R]:
+    """Run a plotting function with every text it makes shown as written.
+
+    Names come from task and sweep files: a ``$`` in one must not start
+    Matplotlib's mathtext (``"x $_$ y"`` would fail to parse). Only the
+    function's own texts are affected, not the caller's other figures.
+    """
+
+    @functools.wraps(plot)
+    def plotted(*args: P.args, **kwargs: P.kwargs) -> R:
+        with matplotlib.rc_context({"text.parse_math": False}):
+            return plot(*args, **kwargs)
+
+    return plotted
 
 
 def new_figure(width_in: float = 10.0, height_in: float = 7.0) -> Figure:

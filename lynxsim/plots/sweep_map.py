@@ -13,7 +13,7 @@ from matplotlib.patches import Circle, Patch, Rectangle
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.plots.obstacles import draw_obstacles_top
-from lynxsim.plots.style import new_figure, save_figure
+from lynxsim.plots.style import new_figure, plain_text, save_figure
 from lynxsim.scene import Obstacle, Table
 from lynxsim.traj.waypoints import ArmPose
 
@@ -40,6 +40,7 @@ def _grid(x: npt.NDArray[np.float64], y: npt.NDArray[np.float64]) -> tuple[np.nd
     return xs, ys, np.searchsorted(xs, x), np.searchsorted(ys, y)
 
 
+@plain_text
 def plot_obstacle_map(
     rows: Mapping[str, npt.NDArray[np.generic]],
     dest: str | os.PathLike[str],

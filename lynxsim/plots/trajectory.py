@@ -21,7 +21,7 @@ from lynxsim.plots.obstacles import (
     inside_any,
     obstacle_extent_mm,
 )
-from lynxsim.plots.style import new_figure, save_figure
+from lynxsim.plots.style import new_figure, plain_text, save_figure
 from lynxsim.scene import REPORT_CYLINDER, Obstacle
 from lynxsim.traj import Trajectory
 
@@ -65,6 +65,7 @@ def _plot_rate(traj: Trajectory, rate_hz: float) -> float:
     return min(rate_hz, MAX_PLOT_POINTS / max(traj.duration, 1e-9))
 
 
+@plain_text
 def plot_joint_profiles(
     traj: Trajectory,
     dest: str | os.PathLike[str],
@@ -126,6 +127,7 @@ def plot_joint_profiles(
     save_figure(fig, dest)
 
 
+@plain_text
 def plot_tool_paths(
     trajectories: Mapping[str, Trajectory],
     dest: str | os.PathLike[str],

@@ -112,3 +112,19 @@ def test_limit_violation_is_a_one_line_error(tmp_path, capsys):
 def test_task_is_required_without_list(capsys):
     assert main(["traj"]) == 1
     assert "give a task file" in capsys.readouterr().err
+
+
+def test_names_with_dollar_signs_are_drawn_as_written(tmp_path):
+    """A ``$`` in a task or pose name is text, not Matplotlib mathtext (which fails to parse it)."""
+    task = (TASKS / "pick_and_place.toml").read_text()
+    task = task.replace('name = "pick_and_place"', 'name = "cost $_$ x"', 1)
+    task = task.replace('name = "P2"', 'name = "$\\\\foo$"', 1)
+    path = tmp_path / "dollars.toml"
+    path.write_text(task)
+    assert "cost $_$ x" in task and "$\\\\foo$" in task
+    code = main(["traj", str(path), "--type", "quintic", "--out-dir", str(tmp_path / "out")])
+    assert code == 0
+    pngs = sorted(p.name for p in (tmp_path / "out").glob("*.png"))
+    assert len(pngs) == 2  # the joint profiles and the tool-path comparison
+    for png in (tmp_path / "out").glob("*.png"):
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
