@@ -91,7 +91,7 @@ def check_range(value: float, name: str, low: float, high: float, unit: str = ""
         raise InvalidInputError(
             f"{name} must be between {low:g} and {high:g}{suffix}, got {v:g}{suffix}"
         )
-    return v
+    return v + 0.0  # -0.0 as 0.0 (NumPy refuses a scale of -0.0, for one)
 
 
 def check_count(value: int, name: str, low: int, high: int) -> int:

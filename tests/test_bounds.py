@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import math
 
+import gymnasium as gym
 import numpy as np
 import pytest
 
 from lynxsim.bounds import check_count, check_range
+from lynxsim.cli.units import bounded_float
+from lynxsim.envs.noise import action_noise_std
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 
 
@@ -46,3 +49,12 @@ def test_ranges_refuse_non_numbers_non_finite_and_outside():
         check_range(2.0, "x", 0.0, 1.0, "s")
     with pytest.raises(InvalidInputError, match=r"^x must be a number"):
         check_range(10**400, "x", 0.0, 1.0)
+
+
+def test_a_negative_zero_comes_back_as_zero():
+    """``-0`` passes ``0 <= x`` but NumPy refuses it as a scale: ranges and the CLI return +0.0."""
+    assert math.copysign(1.0, check_range(-0.0, "noise", 0.0, 1.0)) == 1.0
+    assert math.copysign(1.0, bounded_float(0.0, 1.0)("-0")) == 1.0
+    std = action_noise_std(gym.spaces.Box(-1.0, 1.0, (3,)), -0.0)
+    assert (np.copysign(1.0, std) == 1.0).all()
+    np.random.default_rng(0).normal(0.0, std)  # a scale NumPy takes

@@ -100,7 +100,7 @@ def bounded_float(low: float, high: float, unit: str = "") -> Callable[[str], fl
             raise argparse.ArgumentTypeError(
                 f"must be between {low:g} and {high:g}{suffix}, got {text}"
             )
-        return value
+        return value + 0.0  # "-0" as 0.0
 
     parse.__name__ = "number"
     return parse
