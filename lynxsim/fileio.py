@@ -19,7 +19,7 @@ import shutil
 import stat
 import tempfile
 import unicodedata
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -34,6 +34,7 @@ __all__ = [
     "file_stem",
     "output_path",
     "safe_stem",
+    "unique_stems",
     "write_json",
 ]
 
@@ -63,6 +64,25 @@ def safe_stem(name: str, fallback: str = "output") -> str:
 def file_stem(*parts: str) -> str:
     """Name pieces made safe (:func:`safe_stem`) and joined by ``_``, e.g. ``pick_quintic``."""
     return "_".join(safe_stem(p) for p in parts)[: 2 * MAX_STEM]
+
+
+def unique_stems(stems: Sequence[str]) -> list[str]:
+    """``stems`` with a repeat made distinct: the second ``x`` becomes ``x_2``, and so on.
+
+    Names made safe can coincide (``arm/one`` and ``arm_one``, two names of
+    other scripts, long names cut short); files named after them must not
+    overwrite each other.
+    """
+    taken: set[str] = set()
+    out = []
+    for stem in stems:
+        name, n = stem, 1
+        while name in taken:
+            n += 1
+            name = f"{stem}_{n}"
+        taken.add(name)
+        out.append(name)
+    return out
 
 
 def output_path(folder: str | os.PathLike[str], *parts: str, suffix: str) -> Path:

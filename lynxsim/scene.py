@@ -120,6 +120,11 @@ class Cylinder:
         _sizes(owner, radius=self.radius, height=self.height)
 
     @property
+    def bottom_z(self) -> float:
+        """Height of its bottom face [m]."""
+        return self.position[2]
+
+    @property
     def shape(self) -> str:
         """``"cylinder"``."""
         return "cylinder"
@@ -161,6 +166,11 @@ class Box:
         _angle(owner, yaw=self.yaw)
 
     @property
+    def bottom_z(self) -> float:
+        """Height of its bottom face [m]."""
+        return self.position[2]
+
+    @property
     def shape(self) -> str:
         """``"box"``."""
         return "box"
@@ -200,6 +210,11 @@ class Sphere:
         owner = f"sphere {self.name!r}"
         _vector(owner, "position", self.position, 3)
         _sizes(owner, radius=self.radius)
+
+    @property
+    def bottom_z(self) -> float:
+        """Height of its lowest point [m]."""
+        return self.position[2] - self.radius
 
     @property
     def shape(self) -> str:
@@ -268,6 +283,11 @@ class Cube:
         _within("cube", 0.0, MAX_FRICTION, "", friction=self.friction)
         _angle("cube", yaw=self.yaw)
 
+    @property
+    def bottom_z(self) -> float:
+        """Height of its bottom face at the start [m]."""
+        return self.position[2] - self.size / 2
+
 
 TABLE = Table()
 """The table of the shipped scene: its top 12.5 mm below the base plane."""
@@ -296,8 +316,9 @@ class Scene:
 
     Raises:
         InvalidInputError: Obstacles, table or cube of the wrong type, duplicate
-            obstacle names, or an obstacle that encloses the robot's base (the
-            origin) or the cube's start (its centre).
+            obstacle names, an obstacle or the cube reaching into the table, or
+            an obstacle that encloses the robot's base (the origin) or the
+            cube's start (its centre).
     """
 
     obstacles: tuple[Obstacle, ...] = ()
@@ -319,6 +340,18 @@ class Scene:
         for name in names:
             if names.count(name) > 1:
                 raise InvalidInputError(f"two obstacles are named {name!r}; names must be unique")
+        top = self.table.top_z
+        for o in self.obstacles:
+            if o.bottom_z < top:
+                raise InvalidInputError(
+                    f"obstacle {o.name!r} reaches into the table: its bottom at z = "
+                    f"{o.bottom_z * 1e3:g} mm, the table top at {top * 1e3:g} mm"
+                )
+        if self.cube is not None and self.cube.bottom_z < top:
+            raise InvalidInputError(
+                f"the cube reaches into the table: its bottom at z = "
+                f"{self.cube.bottom_z * 1e3:g} mm, the table top at {top * 1e3:g} mm"
+            )
         for o in self.obstacles:
             if o.contains(_BASE_POINT):
                 raise InvalidInputError(f"obstacle {o.name!r} encloses the robot's base")

@@ -12,7 +12,14 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from lynxsim.errors import OutputPathError, VideoError
-from lynxsim.fileio import MAX_STEM, atomic_path, check_destination, output_path, safe_stem
+from lynxsim.fileio import (
+    MAX_STEM,
+    atomic_path,
+    check_destination,
+    output_path,
+    safe_stem,
+    unique_stems,
+)
 from lynxsim.sim.video import decoded_frames, mp4_writer
 
 STEM = re.compile(r"[A-Za-z0-9+][A-Za-z0-9._+-]*")
@@ -89,3 +96,8 @@ def test_a_truncated_video_does_not_decode(tmp_path):
     dest.write_bytes(data[: len(data) // 2])
     with pytest.raises(VideoError, match="does not decode"):
         decoded_frames(dest)
+
+
+def test_repeated_stems_are_made_distinct_in_order():
+    assert unique_stems(["a", "b", "a", "a", "a_2"]) == ["a", "b", "a_2", "a_3", "a_2_2"]
+    assert unique_stems([]) == []

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 import subprocess
 import sys
 
@@ -214,14 +215,39 @@ def test_scene_refuses_duplicate_names_across_shapes():
 
 
 @pytest.mark.parametrize(
+    ("scene", "message"),
+    [
+        (
+            lambda: Scene((Box("b", (0.2, 0.0, -0.05), (0.1, 0.1, 0.1)),)),
+            "obstacle 'b' reaches into the table: its bottom at z = -50 mm, "
+            "the table top at -12.5 mm",
+        ),
+        (
+            lambda: Scene((Sphere("s", (0.2, 0.0, 0.3), 0.35),)),
+            "obstacle 's' reaches into the table: its bottom at z = -50 mm",
+        ),
+        (
+            lambda: Scene(cube=Cube(position=(0.0, 0.3, -0.1))),
+            "the cube reaches into the table: its bottom at z = -112.5 mm",
+        ),
+    ],
+    ids=["box", "sphere", "cube"],
+)
+def test_scene_refuses_what_reaches_into_the_table(scene, message):
+    """The one check of a scene, which task files, sweep files and code all pass."""
+    with pytest.raises(InvalidInputError, match=re.escape(message)):
+        scene()
+
+
+@pytest.mark.parametrize(
     ("obstacle", "what"),
     [
         (Cylinder("c", (0.0, 0.0, TABLE.top_z), 0.05, 0.1), "robot's base"),
-        (Box("b", (0.05, 0.0, -0.05), (0.2, 0.2, 0.1)), "robot's base"),
-        (Sphere("s", (0.0, 0.0, 0.05), 0.1), "robot's base"),
+        (Box("b", (0.05, 0.0, TABLE.top_z), (0.2, 0.2, 0.1)), "robot's base"),
+        (Sphere("s", (0.0, 0.0, 0.05), 0.06), "robot's base"),
         (Cylinder("c", (0.0, 0.3, TABLE.top_z), 0.02, 0.05), "cube's start"),
         (Box("b", (0.0, 0.3, TABLE.top_z), (0.1, 0.1, 0.1)), "cube's start"),
-        (Sphere("s", (0.0, 0.31, 0.0), 0.02), "cube's start"),
+        (Sphere("s", (0.0, 0.31, 0.005), 0.015), "cube's start"),
     ],
     ids=["cylinder_base", "box_base", "sphere_base", "cylinder_cube", "box_cube", "sphere_cube"],
 )

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Callable
 from pathlib import Path
 
-from lynxsim.fileio import file_stem
+from lynxsim.fileio import file_stem, unique_stems
 from lynxsim.scene import Box
-from lynxsim.sweep.runner import Backend, LocalBackend, groups, run_sweep
+from lynxsim.sweep.runner import Backend, Group, LocalBackend, groups, run_sweep
 from lynxsim.sweep.spec import ObstacleSweep, SweepSpec, _digest, table_extent_mm
 from lynxsim.sweep.table import Table
 from lynxsim.tasks import load_task
@@ -23,8 +24,9 @@ REPORT_MAP_TASKS = ("pick_and_place.toml", "obstacle_avoidance.toml")
 def write_maps(spec: SweepSpec, table: Table, out: str | os.PathLike[str]) -> list[Path]:
     """One map per (task, type, planner seed, cube, radius) of a sweep with an obstacle.
 
-    Files ``out/STEM_TASK_TYPE[_seedS][_cubeC][_radiusR].png``, every part made
-    safe (:func:`lynxsim.fileio.file_stem`).
+    Files ``out/STEM_TASK_TYPE[_seedS][_cubeC][_rRmm].png``, every part made
+    safe (:func:`lynxsim.fileio.file_stem`); where two come out the same, the
+    later ones end in ``_2``, ``_3``... (:func:`lynxsim.fileio.unique_stems`).
 
     Returns:
         The PNG files written (none without a swept obstacle).
@@ -33,28 +35,25 @@ def write_maps(spec: SweepSpec, table: Table, out: str | os.PathLike[str]) -> li
 
     if spec.obstacle is None:
         return []
+    every = groups(spec)
+    # names that clean or cut to the same stem must not overwrite each other's maps
+    stems = unique_stems([file_stem(*_map_parts(spec, group)) for group in every])
     written = []
-    for group in groups(spec):
+    for group, stem in zip(every, stems, strict=True):
         task = spec.tasks[group.task]
         rows = {k: v[group.first_row : group.first_row + group.rows] for k, v in table.items()}
-        parts = [spec.name, task.name, group.kind.value]
         label = f"{task.name}, {group.kind.value}"
         if group.seed >= 0:
-            parts.append(f"seed{group.seed}")
             label += f", seed {group.seed}"
         if group.cube >= 0:
-            parts.append(f"cube{group.cube}")
             label += f", cube {group.cube}"
         obstacle = task.scene.obstacle(spec.obstacle.name)
         if group.radius >= 0 and spec.obstacle.radii_mm is not None:
             radius_mm = spec.obstacle.radii_mm[group.radius]
-            parts.append(f"r{radius_mm:g}mm")
             label += f", radius {radius_mm:g} mm"
             if not isinstance(obstacle, Box):
-                import dataclasses
-
                 obstacle = dataclasses.replace(obstacle, radius=radius_mm / 1000.0)
-        dest = Path(out) / f"{file_stem(*parts)}.png"
+        dest = Path(out) / f"{stem}.png"
         plot_obstacle_map(
             rows,
             dest,
@@ -65,6 +64,18 @@ def write_maps(spec: SweepSpec, table: Table, out: str | os.PathLike[str]) -> li
         )
         written.append(dest)
     return written
+
+
+def _map_parts(spec: SweepSpec, group: Group) -> list[str]:
+    """The name pieces of a group's map: sweep, task, type, and what else varies."""
+    parts = [spec.name, spec.tasks[group.task].name, group.kind.value]
+    if group.seed >= 0:
+        parts.append(f"seed{group.seed}")
+    if group.cube >= 0:
+        parts.append(f"cube{group.cube}")
+    if group.radius >= 0 and spec.obstacle is not None and spec.obstacle.radii_mm is not None:
+        parts.append(f"r{spec.obstacle.radii_mm[group.radius]:g}mm")
+    return parts
 
 
 def report_map_spec(tasks: str | os.PathLike[str] = "tasks", step_mm: float = 25.0) -> SweepSpec:

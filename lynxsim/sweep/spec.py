@@ -39,6 +39,7 @@ the seeds), cube positions, radii and obstacle positions, at most
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import math
 import os
@@ -257,6 +258,20 @@ def _obstacle(r: _Reader, raw: object, tasks: tuple[Task, ...]) -> ObstacleSweep
             raise r.fail("obstacle.radius_mm", f"obstacle {name!r} is a box, which has no radius")
         values = _list(r, table["radius_mm"], "obstacle.radius_mm")
         radii = tuple(r.size_mm(v, f"obstacle.radius_mm[{i}]") for i, v in enumerate(values))
+        for i, radius in enumerate(radii):
+            field = f"obstacle.radius_mm[{i}]"
+            if f"{radius:g}" in (f"{v:g}" for v in radii[:i]):
+                raise r.fail(field, f"repeats {radius:g} mm (each radius names its own maps)")
+            for task, o in zip(tasks, swept, strict=True):
+                assert not isinstance(o, Box)  # refused above
+                low = dataclasses.replace(o, radius=radius / 1000.0).bottom_z
+                if low < task.scene.table.top_z:
+                    raise r.fail(
+                        field,
+                        f"a {o.shape} of radius {radius:g} mm at {o.name!r}'s height would reach "
+                        f"into the table of task {task.name!r} (its bottom at z = "
+                        f"{low * 1e3:g} mm, the table top at {task.scene.table.top_z * 1e3:g} mm)",
+                    )
     modes = [k for k in ("grid", "random") if k in table]
     if len(modes) != 1:
         raise r.fail("obstacle", "needs exactly one of [obstacle.grid] or [obstacle.random]")
@@ -325,7 +340,18 @@ def _cube(
     out = []
     for i, item in enumerate(values):
         x, y, z = r.position_mm(item, f"{field}[{i}]")
-        out.append((x / 1000.0, y / 1000.0, z / 1000.0))
+        position = (x / 1000.0, y / 1000.0, z / 1000.0)
+        for task in tasks:
+            assert task.scene.cube is not None  # checked above
+            low = dataclasses.replace(task.scene.cube, position=position).bottom_z
+            if low < task.scene.table.top_z:
+                raise r.fail(
+                    f"{field}[{i}]",
+                    f"task {task.name!r}'s cube centred at z = {z:g} mm would reach into the "
+                    f"table (its bottom at z = {low * 1e3:g} mm, the table top at "
+                    f"{task.scene.table.top_z * 1e3:g} mm)",
+                )
+        out.append(position)
     return tuple(out)
 
 

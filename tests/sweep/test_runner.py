@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import subprocess
 import sys
@@ -12,6 +13,7 @@ import pytest
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sweep.maps import write_maps
 from lynxsim.sweep.runner import LocalBackend, compute_shard, groups, run_sweep, shards
 from lynxsim.sweep.spec import load_sweep
 from lynxsim.sweep.table import COLUMNS, VERDICTS, read_npz
@@ -135,3 +137,24 @@ def test_the_core_never_imports_ray(tmp_path):
 def test_a_local_backend_needs_a_whole_number_of_workers(jobs):
     with pytest.raises(InvalidInputError, match="jobs must be"):
         LocalBackend(jobs)
+
+
+def test_maps_of_names_that_clean_alike_do_not_overwrite_each_other(tmp_path):
+    """Two tasks named ``arm/one`` and ``arm_one`` give two maps, not one written twice."""
+    base = grid_spec(
+        200.0, LINE, tasks=("obstacle_avoidance.toml",) * 2, x_mm=(0.0, 200.0), y_mm=(0.0, 0.0)
+    )
+    tasks = tuple(
+        dataclasses.replace(t, name=n)
+        for t, n in zip(base.tasks, ("arm/one", "arm_one"), strict=True)
+    )
+    spec = dataclasses.replace(base, tasks=tasks)
+    table = run_sweep(spec, tmp_path / "sweep").table
+    maps = write_maps(spec, table, tmp_path / "maps")
+    assert len(maps) == 2
+    assert len(set(maps)) == 2
+    assert all(m.is_file() for m in maps)
+    assert [m.name for m in maps] == [
+        f"{spec.name}_arm_one_line.png",
+        f"{spec.name}_arm_one_line_2.png",
+    ]

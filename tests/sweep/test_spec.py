@@ -78,6 +78,18 @@ def test_a_full_sweep_file_reads_every_field(tmp_path):
         ("radius_mm = [30.0, 40.0]", "radius_mm = []", "obstacle.radius_mm", "non-empty"),
         ("[[0.0, 300.0, 0.0],", "[[0.0, 300.0],", "cube.positions_mm[0]", "3 numbers"),
         ('name = "t"', 'name = "t"\nspeed = 3', "speed", "unknown key"),
+        (
+            "radius_mm = [30.0, 40.0]",
+            "radius_mm = [30.0, 30.0000001]",
+            "obstacle.radius_mm[1]",
+            "repeats 30 mm",
+        ),
+        (
+            "[[0.0, 300.0, 0.0],",
+            "[[0.0, 300.0, -100.0],",
+            "cube.positions_mm[0]",
+            "cube centred at z = -100 mm would reach into the table",
+        ),
     ],
     ids=lambda v: str(v)[:20],
 )
@@ -121,3 +133,26 @@ def test_too_many_runs_are_refused(tmp_path):
     )
     with pytest.raises(SweepFileError, match="at most"):
         load_sweep(path)
+
+
+def test_a_radius_that_sinks_the_swept_sphere_into_the_table_is_refused(tmp_path):
+    path = tmp_path / "ball.toml"
+    path.write_text(
+        f"""
+name = "ball"
+tasks = ["{TASKS / "three_obstacles.toml"}"]
+types = ["quintic"]
+[obstacle]
+name = "sphere"
+radius_mm = [30.0, 350.0]
+[obstacle.grid]
+step_mm = 50.0
+x_mm = [300.0, 400.0]
+y_mm = [0.0, 0.0]
+"""
+    )
+    with pytest.raises(
+        SweepFileError, match=r"radius 350 mm at 'sphere'\S* height would reach"
+    ) as info:
+        load_sweep(path)
+    assert info.value.field == "obstacle.radius_mm[1]"
