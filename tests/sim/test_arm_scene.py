@@ -141,17 +141,17 @@ _BOTTOM = (0.1, 0.1, TABLE.top_z)
 @pytest.mark.parametrize(
     ("make", "message"),
     [
-        (lambda: Cylinder("c", _BOTTOM, 0.0, 0.4), "radius must be positive"),
-        (lambda: Cylinder("c", _BOTTOM, -0.04, 0.4), "radius must be positive"),
-        (lambda: Cylinder("c", _BOTTOM, 0.04, 0.0), "height must be positive"),
-        (lambda: Cylinder("c", _BOTTOM, 0.04, -0.1), "height must be positive"),
+        (lambda: Cylinder("c", _BOTTOM, 0.0, 0.4), "radius must lie within"),
+        (lambda: Cylinder("c", _BOTTOM, -0.04, 0.4), "radius must lie within"),
+        (lambda: Cylinder("c", _BOTTOM, 0.04, 0.0), "height must lie within"),
+        (lambda: Cylinder("c", _BOTTOM, 0.04, -0.1), "height must lie within"),
         (lambda: Cylinder("c", (0.1, math.nan, TABLE.top_z), 0.04, 0.4), "finite"),
         (lambda: Cylinder("c", (0.1, 0.1), 0.04, 0.4), "tuple of 3 numbers"),
         (lambda: Cylinder("c", _BOTTOM, math.inf, 0.4), "finite"),
         (lambda: Cylinder("", _BOTTOM, 0.04, 0.4), "non-empty printable"),
-        (lambda: Box("b", _BOTTOM, (0.1, 0.0, 0.1)), r"size\[1\] must be positive"),
+        (lambda: Box("b", _BOTTOM, (0.1, 0.0, 0.1)), r"size\[1\] must lie within"),
         (lambda: Box("b", _BOTTOM, (0.1, 0.1, 0.1), yaw=math.nan), "yaw must be finite"),
-        (lambda: Sphere("s", _BOTTOM, -0.02), "radius must be positive"),
+        (lambda: Sphere("s", _BOTTOM, -0.02), "radius must lie within"),
         (lambda: Sphere("s", (math.nan, 0.1, 0.1), 0.02), "finite"),
     ],
     ids=[
@@ -179,7 +179,7 @@ def test_scene_rejects_duplicate_names_and_obstacles_over_the_base_or_the_cube()
     with pytest.raises(InvalidInputError, match="two obstacles are named 'cylinder'"):
         Scene((REPORT_CYLINDER, twin))
     with pytest.raises(InvalidInputError, match="encloses the robot's base"):
-        Scene((Sphere("s", (0.0, 0.0, 0.05), 0.1),))
+        Scene((Sphere("s", (0.0, 0.0, 0.05), 0.06),))
     with pytest.raises(InvalidInputError, match="encloses the cube's start"):
         Scene((Box("b", (0.0, 0.3, TABLE.top_z), (0.1, 0.1, 0.1)),))
     # Without the cube, the same box is fine.
