@@ -121,6 +121,8 @@ def _simulations(args: argparse.Namespace) -> None:
 
 
 def _demo(args: argparse.Namespace) -> int:
+    if not args.tasks.is_dir():  # before any work: a mistyped folder is not "no tasks"
+        raise NotADirectoryError(f"--tasks {args.tasks}: no such folder of task files")
     _kinematics_tables()
     _simulations(args)
     return 0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import os
+import warnings
 from collections.abc import Callable
 from typing import ParamSpec, TypeVar
 
@@ -25,13 +26,16 @@ def plain_text(plot: Callable[P, R]) -> Callable[P, R]:
     """Run a plotting function with every text it makes shown as written.
 
     Names come from task and sweep files: a ``$`` in one must not start
-    Matplotlib's mathtext (``"x $_$ y"`` would fail to parse). Only the
-    function's own texts are affected, not the caller's other figures.
+    Matplotlib's mathtext (``"x $_$ y"`` would fail to parse), and a letter
+    that the font lacks is drawn as a box without a warning per glyph on
+    stderr. Only the function's own texts are affected, not the caller's
+    other figures.
     """
 
     @functools.wraps(plot)
     def plotted(*args: P.args, **kwargs: P.kwargs) -> R:
-        with matplotlib.rc_context({"text.parse_math": False}):
+        with matplotlib.rc_context({"text.parse_math": False}), warnings.catch_warnings():
+            warnings.filterwarnings("ignore", message=r"Glyph \d+ .* missing from font")
             return plot(*args, **kwargs)
 
     return plotted

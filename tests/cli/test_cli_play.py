@@ -124,3 +124,12 @@ def test_cli_play_refuses_types_the_rrr_does_not_plan(tmp_path, capsys):
     task.write_text(short_rrr_task())
     assert main(["play", str(task), "--no-video", "--type", "ruckig"]) == 1
     assert "'ruckig' is not planned for the 3-RRR robot" in capsys.readouterr().err
+
+
+def test_demo_with_a_missing_tasks_folder_is_one_line_before_any_work(cli, tmp_path):
+    result = cli("demo", "--tasks", str(tmp_path / "nowhere"), "--out-dir", str(tmp_path / "out"))
+    assert result.code == 1
+    assert result.err.strip().count("\n") == 0
+    assert "no such folder of task files" in result.err
+    assert result.out == ""  # not even the kinematic tables
+    assert not (tmp_path / "out").exists()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -129,3 +130,15 @@ def test_names_with_dollar_signs_are_drawn_as_written(tmp_path):
     assert len(pngs) == 2  # the joint profiles and the tool-path comparison
     for png in (tmp_path / "out").glob("*.png"):
         assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_name_the_font_cannot_draw_warns_nothing(tmp_path):
+    """Letters missing from the plot font are drawn as boxes, without a warning per glyph."""
+    task = (TASKS / "pick_and_place.toml").read_text()
+    path = tmp_path / "cjk.toml"
+    path.write_text(task.replace('name = "pick_and_place"', 'name = "中文任务"', 1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code = main(["traj", str(path), "--type", "quintic", "--out-dir", str(tmp_path / "out")])
+    assert code == 0
+    assert len(list((tmp_path / "out").glob("*.png"))) == 2
