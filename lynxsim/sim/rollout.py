@@ -307,6 +307,15 @@ def whole_controls(base: FloatArray, adr: IntArray, values: FloatArray) -> Float
     return out
 
 
+def _doubling(size: int) -> list[int]:
+    """``size``, twice that, and so on while below ``_CHUNK_MOST``."""
+    out = []
+    while size < _CHUNK_MOST:
+        out.append(size)
+        size *= 2
+    return out
+
+
 def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     """How a run of ``steps`` steps is stepped natively: consecutive (start, end) pairs.
 
@@ -317,8 +326,7 @@ def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     """
     if steps <= 0:
         return []
-    up = [_CHUNK_FIRST << k for k in range((_CHUNK_MOST // _CHUNK_FIRST).bit_length() - 1)]
-    down = [_CHUNK_LAST << k for k in range((_CHUNK_MOST // _CHUNK_LAST).bit_length() - 2, -1, -1)]
+    up, down = _doubling(_CHUNK_FIRST), _doubling(_CHUNK_LAST)[::-1]
     middle = steps - sum(up) - sum(down)
     if middle < 0:  # too short to ramp
         sizes = [_CHUNK_FIRST] * (steps // _CHUNK_FIRST) + (
