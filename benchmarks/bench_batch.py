@@ -8,7 +8,7 @@ one process as (a) a loop of :func:`~lynxsim.sim.arm.playback.play_arm`
 (each on two threads where it can; (a') again bound to one CPU; (a'') each
 stepped in a Python loop, as a step hook makes it, the path every playback
 took when issue 12 was filed),
-(b) :func:`~lynxsim.sim.batch.play_arm_batch` on one thread, (c) on two; the
+(b) :func:`~lynxsim.sim.arm.batch.play_arm_batch` on one thread, (c) on two; the
 wall times (medians) and their ratios are printed, then where the batch's time
 goes (one profiled batch on one thread). Issue 12's targets: (c) >= 1.8x (b),
 and the batch >= 5x the loop.
@@ -29,10 +29,10 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 import mujoco
 
 from lynxsim.arm.task import build_trajectory
+from lynxsim.sim.arm.batch import play_arm_batch
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
-from lynxsim.sim.batch import play_arm_batch
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import load_task
 from lynxsim.traj import WAYPOINT_KINDS
@@ -48,7 +48,7 @@ PARTS = {
         "~",
         "<built-in method mujoco._functions.mj_collision>",
     ),
-    "logs (contacts classified)": ("rollout.py", "finish_log"),
+    "logs (contacts classified)": ("log.py", "finish_log"),
     "summaries": ("summary.py", "summarize"),
 }
 """Where the batch's time goes: label -> profiled (file name, function name)."""

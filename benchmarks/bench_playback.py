@@ -6,7 +6,7 @@ Run: ``python benchmarks/bench_playback.py``.
   clearance to every obstacle and logging every step, the report included;
   wall time, and the CPU time of both threads where a helper thread steps),
   beside the physics alone in the same run, on the same scene compiled without
-  the recording sensors (:mod:`lynxsim.sim.sensors`): the same controls stepped
+  the recording sensors (:mod:`lynxsim.sim.stepping.sensors`): the same controls stepped
   natively (``mujoco.rollout``, no Python per step: the bare physics), and set
   and stepped in a Python loop (``data.ctrl`` + ``mj_step``); the ratios of
   speeds are printed.
@@ -28,7 +28,8 @@ from mujoco import rollout
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
-from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
+from lynxsim.sim.arm.playback import arm_binding, play_arm
+from lynxsim.sim.stepping.commands import physics_grid
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 

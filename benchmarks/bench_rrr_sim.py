@@ -29,9 +29,9 @@ import mujoco
 import numpy as np
 
 from lynxsim.rrr.task import path_from_task
-from lynxsim.sim.arm.playback import physics_grid
 from lynxsim.sim.rrr.model import RRRIds, load_rrr_scene
 from lynxsim.sim.rrr.playback import play_rrr, start_model
+from lynxsim.sim.stepping.commands import physics_grid
 from lynxsim.tasks import load_task
 
 TASK = Path(__file__).resolve().parents[1] / "tasks" / "rrr_closed_curve.toml"

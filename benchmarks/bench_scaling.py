@@ -14,7 +14,7 @@ the same motion, so each step costs alike whatever the length.
 * (a) ``play_arm`` (contacts, clearance, logging and the report) in us per
   physics step (the 0.5 s hold before the record and the 0.5 s settle counted),
   beside bare ``mj_step`` on a fresh data of the same scene compiled without
-  the recording sensors (:mod:`lynxsim.sim.sensors`) for as many steps,
+  the recording sensors (:mod:`lynxsim.sim.stepping.sensors`) for as many steps,
   the two taken in turn in every repeat; a line fitted through the lengths
   splits each run into a fixed cost and a cost per step.
 * (b) :class:`~lynxsim.sim.collision.CollisionChecker` ``check`` and

@@ -5,14 +5,10 @@ present (:func:`lynxsim.sim.gl.default_gl_backend`); MuJoCo reads it once, when
 ``mujoco`` is first imported, so import :mod:`lynxsim.sim` before ``mujoco``.
 
 The shared parts are :mod:`~lynxsim.sim.collision` (the collision definition
-and the batch checker), :mod:`~lynxsim.sim.rollout` (stepping),
-:mod:`~lynxsim.sim.sensors` and :mod:`~lynxsim.sim.records` (what a natively
-stepped run records, and its records), :mod:`~lynxsim.sim.overlap` (stepping
-shared between threads), :mod:`~lynxsim.sim.batch` (many runs stepped
-natively, the same logs),
-:mod:`~lynxsim.sim.summary` (log to report), :mod:`~lynxsim.sim.recording`
-(log to video); each robot has its folder (:mod:`lynxsim.sim.arm`,
-:mod:`lynxsim.sim.rrr`).
+and the batch checker), :mod:`~lynxsim.sim.stepping` (stepping one run or many,
+natively where it can, into logs), :mod:`~lynxsim.sim.summary` (log to report),
+:mod:`~lynxsim.sim.recording` (log to video); each robot has its folder
+(:mod:`lynxsim.sim.arm`, :mod:`lynxsim.sim.rrr`), which generic code never imports.
 """
 
 from lynxsim.sim.gl import default_gl_backend

@@ -1,6 +1,6 @@
 """Videos of runs, rendered from their logs; progress hooks of the stepping.
 
-:func:`render_log` draws any :class:`~lynxsim.sim.rollout.PlaybackLog` (a run
+:func:`render_log` draws any :class:`~lynxsim.sim.stepping.log.PlaybackLog` (a run
 just stepped, or one of a batch) into an MP4: video time is simulated time,
 frame ``i`` shows the first recorded step at or after ``i / fps``, the tracked
 site's path so far (the log's ``tool``) is traced, targets are marked, and bodies of the robot
@@ -18,7 +18,7 @@ import numpy.typing as npt
 
 from lynxsim.sim.collision import classify_contacts
 from lynxsim.sim.render import Overlay, PathTrace, RenderSettings, SceneRenderer
-from lynxsim.sim.rollout import PlaybackLog, ProgressFn, StepHook
+from lynxsim.sim.stepping.log import PlaybackLog, ProgressFn, StepHook
 from lynxsim.sim.video import mp4_writer
 
 __all__ = ["ProgressFn", "frame_steps", "progress_hook", "render_log", "split_progress"]

@@ -1,6 +1,6 @@
 """A run's log in, its :class:`~lynxsim.sim.report.RunReport` out: the same function for any run.
 
-Pure NumPy over a :class:`~lynxsim.sim.rollout.PlaybackLog` (no MuJoCo state),
+Pure NumPy over a :class:`~lynxsim.sim.stepping.log.PlaybackLog` (no MuJoCo state),
 so a single playback, a batch of them or a saved log are summarised alike.
 """
 
@@ -12,7 +12,7 @@ import numpy as np
 
 from lynxsim.sim.collision import ContactTracker
 from lynxsim.sim.report import ObstacleClearance, RobotMetrics, RunReport
-from lynxsim.sim.rollout import PlaybackLog
+from lynxsim.sim.stepping.log import PlaybackLog
 
 __all__ = ["Playback", "summarize"]
 

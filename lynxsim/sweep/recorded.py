@@ -32,10 +32,11 @@ from lynxsim.arm import tool_pose
 from lynxsim.errors import LynxsimError
 from lynxsim.scene import Scene
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import arm_binding, physics_grid
+from lynxsim.sim.arm.playback import arm_binding
 from lynxsim.sim.arm.task import pick_and_place_gripper, run_arm_trajectory
 from lynxsim.sim.report import RunReport
-from lynxsim.sim.rollout import rollout
+from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.traj import Trajectory
 
 __all__ = ["RecordedRun", "ReplayMismatchError", "record_run"]

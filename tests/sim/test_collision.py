@@ -1,7 +1,7 @@
 """Scenes of several obstacles, and the batch collision checker against playback.
 
 The checker (:class:`lynxsim.sim.collision.CollisionChecker`) and playback
-(:func:`lynxsim.sim.rollout.rollout`) share one collision definition, so the
+(:func:`lynxsim.sim.stepping.rollout.rollout`) share one collision definition, so the
 checker's verdict and clearance for a logged state must be the log's, exactly.
 """
 
@@ -32,7 +32,7 @@ from lynxsim.sim.collision import (
     _bounds,
     classify_contacts,
 )
-from lynxsim.sim.rollout import PlaybackLog
+from lynxsim.sim.stepping.log import PlaybackLog
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 from tests.helpers import assert_close

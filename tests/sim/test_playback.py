@@ -15,10 +15,11 @@ from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, LimitViolationError, NonFiniteInputError
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
+from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.collision import CLEARANCE_CAP_M, classify_contacts
-from lynxsim.sim.rollout import rollout
+from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.tasks import load_task
 from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
 

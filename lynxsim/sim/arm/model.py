@@ -22,7 +22,7 @@ from lynxsim.resources import model_path
 from lynxsim.scene import REPORT_SCENE, Box, Cylinder, Obstacle, Scene
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups
-from lynxsim.sim.sensors import add_recording_sensors
+from lynxsim.sim.stepping.sensors import add_recording_sensors
 
 __all__ = [
     "ARM_ACTUATORS",
@@ -195,7 +195,7 @@ def load_arm_scene(scene: Scene = REPORT_SCENE) -> mujoco.MjModel:
     """Compile the arm's scene (see :func:`load_arm_spec`).
 
     The model carries the recording sensors of its playback
-    (:func:`lynxsim.sim.sensors.add_recording_sensors`), so that a run records
+    (:func:`lynxsim.sim.stepping.sensors.add_recording_sensors`), so that a run records
     natively.
 
     Returns:

@@ -1,25 +1,23 @@
-"""Playing arm trajectories in the arm scene: binding, physics grid, collision checker."""
+"""Playing arm trajectories in the arm scene: binding, collision checker, playback."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
 import mujoco
-import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import tool_pose
-from lynxsim.bounds import MAX_STEPS
-from lynxsim.errors import InvalidInputError
-from lynxsim.inputs import positive_number
 from lynxsim.sim.arm.model import SceneIds
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionChecker
-from lynxsim.sim.rollout import ProgressFn, StepHook, rollout
+from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.stepping.log import ProgressFn, StepHook
+from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.sim.summary import Playback, summarize
 from lynxsim.traj import Trajectory
 
-__all__ = ["arm_binding", "arm_checker", "physics_grid", "play_arm"]
+__all__ = ["arm_binding", "arm_checker", "play_arm"]
 
 
 def arm_binding(model: mujoco.MjModel) -> RobotBinding:
@@ -39,24 +37,6 @@ def arm_checker(model: mujoco.MjModel, base_qpos: npt.ArrayLike | None = None) -
     return CollisionChecker(
         model, ids.collision_groups(model), ids.arm_qpos, base_qpos=base_qpos, attach=attach
     )
-
-
-def physics_grid(duration_s: float, dt: float) -> np.ndarray:
-    """Times at the end of each physics step over a duration: ``k * dt``, k = 1..ceil(T/dt) [s].
-
-    The last time is clipped to the duration, so the final command is the final waypoint.
-
-    Raises:
-        InvalidInputError: Duration or step not a positive number, or more than
-            :data:`lynxsim.bounds.MAX_STEPS` steps.
-    """
-    duration_s = positive_number(duration_s, "duration_s", "s")
-    dt = positive_number(dt, "dt", "s")
-    if duration_s / dt > MAX_STEPS:
-        raise InvalidInputError(f"{duration_s:g} s at {dt:g} s a step is over {MAX_STEPS:,} steps")
-    n = max(1, int(np.ceil(duration_s / dt - 1e-9)))
-    grid: np.ndarray = np.minimum(np.arange(1, n + 1) * dt, duration_s)
-    return grid
 
 
 def play_arm(

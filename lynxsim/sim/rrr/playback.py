@@ -2,7 +2,7 @@
 
 The path is sampled at the end of every physics step, solved by the inverse
 kinematics in one working mode (:func:`lynxsim.rrr.path.actuated_path`) and
-stepped by :func:`lynxsim.sim.rollout.rollout` and summarised by
+stepped by :func:`lynxsim.sim.stepping.rollout.rollout` and summarised by
 :func:`lynxsim.sim.summary.summarize`, as every run: the run report's tool
 point is the platform-centre needle, its self-collisions are the link
 interference, and its ``metrics`` are the 3-RRR figures (:class:`RRRMetrics`).
@@ -20,15 +20,16 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import ActuatedPath, PlatformPath, actuated_path
-from lynxsim.sim.arm.playback import physics_grid
 from lynxsim.sim.report import RobotMetrics
-from lynxsim.sim.rollout import PlaybackLog, StepHook, rollout
 from lynxsim.sim.rrr.model import (
     RRRIds,
     assembly_qpos,
     load_rrr_scene,
     rrr_binding,
 )
+from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.stepping.log import PlaybackLog, StepHook
+from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.sim.summary import Playback, summarize
 
 __all__ = [
@@ -135,7 +136,7 @@ def link_pairs(model: mujoco.MjModel, ids: RRRIds) -> list[tuple[int, int]]:
 class LoopMonitor:
     """Per-step bookkeeping of a 3-RRR run: loop closure, pose error, link clearance.
 
-    A step hook of :func:`~lynxsim.sim.rollout.rollout`, called after every
+    A step hook of :func:`~lynxsim.sim.stepping.rollout.rollout`, called after every
     recorded physics step.
 
     Args:

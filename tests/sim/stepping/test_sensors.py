@@ -20,14 +20,15 @@ from hypothesis import strategies as st
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
-from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
+from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
 from lynxsim.sim.collision import classify_contacts
-from lynxsim.sim.sensors import PREFIX, RecordingLayout, add_recording_sensors
+from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.stepping.sensors import PREFIX, RecordingLayout, add_recording_sensors
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 THREE_OBSTACLES = load_task(ROOT / "tasks" / "three_obstacles.toml")
 
 

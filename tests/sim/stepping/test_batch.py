@@ -13,16 +13,17 @@ import pytest
 
 from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, LimitViolationError
+from lynxsim.sim.arm.batch import play_arm_batch
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
-from lynxsim.sim.batch import BatchRun, batch_rollout, play_arm_batch
-from lynxsim.sim.rollout import chunk_bounds
+from lynxsim.sim.stepping.batch import BatchRun, batch_rollout
+from lynxsim.sim.stepping.native import chunk_bounds
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 ARM_TASKS = sorted(p for p in (ROOT / "tasks").glob("*.toml") if load_task(p).robot == "arm")
 """The shipped arm tasks."""
 KINDS = (TrajectoryKind.CUBIC, TrajectoryKind.LSPB, TrajectoryKind.LINE, TrajectoryKind.RUCKIG)

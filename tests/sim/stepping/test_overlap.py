@@ -1,7 +1,7 @@
 """Stepping shared between helper threads and the caller's: every item, in order, once.
 
-:func:`lynxsim.sim.overlap.share_stepping` drives real playbacks and batches
-(``tests/sim/test_batch.py``, ``tests/sim/test_records.py``); here its
+:func:`lynxsim.sim.stepping.overlap.share_stepping` drives real playbacks and batches
+(``tests/sim/stepping/test_batch.py``, ``tests/sim/stepping/test_records.py``); here its
 contract is checked on plain iterators, whose ``next()`` may sleep (as a
 native step releases the GIL) or raise, with zero, one and two helpers.
 """
@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lynxsim.sim.overlap import share_stepping
+from lynxsim.sim.stepping.overlap import share_stepping
 
 
 class Source:

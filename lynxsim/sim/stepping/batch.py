@@ -1,8 +1,8 @@
 """Many runs of one model stepped natively, on every CPU, each logged as :func:`rollout` logs it.
 
 :func:`batch_rollout` plays many runs (commands of one model, any lengths) and
-returns for each the :class:`~lynxsim.sim.rollout.PlaybackLog` that
-:func:`~lynxsim.sim.rollout.rollout` gives for the same commands, bit for bit;
+returns for each the :class:`~lynxsim.sim.stepping.log.PlaybackLog` that
+:func:`~lynxsim.sim.stepping.rollout.rollout` gives for the same commands, bit for bit;
 :func:`~lynxsim.sim.summary.summarize` then gives the same report.
 
 What runs where:
@@ -10,17 +10,17 @@ What runs where:
 - **Native, no Python per step:** the unrecorded hold and every recorded step
   of every run, with :class:`mujoco.batch.Batch` (one ``MjData`` per run, so
   that each keeps its warning counters), recording the time, the whole state
-  and the recording sensors (:mod:`lynxsim.sim.sensors`: tool, forces, carried
+  and the recording sensors (:mod:`lynxsim.sim.stepping.sensors`: tool, forces, carried
   geoms' poses, the contact gate) after each step. The runs are split into one
   group per thread, each a batch of its own stepped in time chunks
-  (:func:`~lynxsim.sim.rollout.chunk_bounds`); the groups' chunks are stepped
+  (:func:`~lynxsim.sim.stepping.native.chunk_bounds`); the groups' chunks are stepped
   by helper threads and by the caller's thread whenever it has nothing to
-  record (:func:`~lynxsim.sim.overlap.share_stepping`), the GIL released.
+  record (:func:`~lynxsim.sim.stepping.overlap.share_stepping`), the GIL released.
 - **Python, in the caller's thread, chunk by chunk as they are stepped:** each
-  run's records (:class:`~lynxsim.sim.records.SensedRecorder`: only states the
+  run's records (:class:`~lynxsim.sim.stepping.records.SensedRecorder`: only states the
   gate flags are posed again for their contact lists; the clearances of every
   state; in a model without the sensors every state is posed), then, once a
-  run is stepped, :func:`~lynxsim.sim.rollout.finish_log`, the very code of
+  run is stepped, :func:`~lynxsim.sim.stepping.log.finish_log`, the very code of
   ``rollout``.
 - **A run in which MuJoCo warns** (an unstable state that it resets, a full
   contact buffer) is played again by ``rollout`` alone, so that its log, cut
@@ -41,30 +41,17 @@ import numpy as np
 import numpy.typing as npt
 from mujoco import batch as mjbatch
 
-from lynxsim.arm import tool_pose
-from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import count
-from lynxsim.sim.arm.playback import arm_binding, physics_grid
 from lynxsim.sim.binding import RobotBinding
-from lynxsim.sim.overlap import cpu_count, share_stepping
-from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
-from lynxsim.sim.rollout import (
-    PlaybackLog,
-    ProgressFn,
-    RunCommands,
-    chunk_bounds,
-    finish_log,
-    mujoco_warnings,
-    plan_commands,
-    rest_at_start,
-    rollout,
-    whole_controls,
-)
-from lynxsim.sim.sensors import RecordingLayout
-from lynxsim.sim.summary import Playback, summarize
-from lynxsim.traj import Trajectory
+from lynxsim.sim.stepping.commands import RunCommands, plan_commands, rest_at_start, whole_controls
+from lynxsim.sim.stepping.log import PlaybackLog, ProgressFn, finish_log, mujoco_warnings
+from lynxsim.sim.stepping.native import chunk_bounds
+from lynxsim.sim.stepping.overlap import cpu_count, share_stepping
+from lynxsim.sim.stepping.records import SensedChunk, SensedRecorder, StepRecords
+from lynxsim.sim.stepping.rollout import rollout
+from lynxsim.sim.stepping.sensors import RecordingLayout
 
-__all__ = ["MAX_THREADS", "BatchRun", "batch_rollout", "play_arm_batch"]
+__all__ = ["MAX_THREADS", "BatchRun", "batch_rollout"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -75,12 +62,12 @@ _TIME = mujoco.mjtState.mjSTATE_TIME
 _RECORD = (_TIME, "qpos", "actuator_force")
 """What the native stepping records after each step (models without recording sensors)."""
 _SENSED = (_TIME, "qpos", "sensordata")
-"""What it records in a model with recording sensors (:mod:`lynxsim.sim.sensors`)."""
+"""What it records in a model with recording sensors (:mod:`lynxsim.sim.stepping.sensors`)."""
 
 
 @dataclass(frozen=True)
 class BatchRun:
-    """One run of a batch: what :func:`~lynxsim.sim.rollout.rollout` takes for a run.
+    """One run of a batch: what :func:`~lynxsim.sim.stepping.rollout.rollout` takes for a run.
 
     Attributes:
         q_cmd: Commands, (T, n) [rad], one per physics step.
@@ -111,7 +98,7 @@ def batch_rollout(
 
     Every run is held at its first command for ``presettle_s`` (not recorded),
     then plays its commands and holds the last for ``settle_s``, exactly as
-    :func:`~lynxsim.sim.rollout.rollout` (see the module docstring for what
+    :func:`~lynxsim.sim.stepping.rollout.rollout` (see the module docstring for what
     runs natively and what in Python). The batch keeps one ``MjData`` per run.
 
     Args:
@@ -219,7 +206,7 @@ def _stepped(
 ) -> Iterator[list[tuple[int, SensedChunk, bool]]]:
     """Step runs ``share`` of a batch natively, in time chunks, in a batch of their own.
 
-    Yields, per chunk (:func:`~lynxsim.sim.rollout.chunk_bounds`), each run
+    Yields, per chunk (:func:`~lynxsim.sim.stepping.native.chunk_bounds`), each run
     still stepping: (run, chunk, whether MuJoCo warned in the run, known at its
     last chunk). ``bare``: the model has no recording sensors (the chunk's
     ``sensordata`` then holds actuator forces).
@@ -327,60 +314,3 @@ def _replay(
         presettle_s=presettle_s,
         gripper_cmd=run.gripper_cmd,
     )
-
-
-def play_arm_batch(
-    model: mujoco.MjModel,
-    trajectories: Sequence[Trajectory],
-    *,
-    task: str,
-    settle_s: float = 0.5,
-    gripper_cmds: Sequence[Callable[[float], float] | None] | None = None,
-    nthread: int | None = None,
-    progress: ProgressFn | None = None,
-) -> list[Playback]:
-    """:func:`~lynxsim.sim.arm.playback.play_arm` of many trajectories in one batch.
-
-    Each trajectory is sampled on the physics grid as ``play_arm`` samples it;
-    each result equals ``play_arm``'s for the same trajectory and gripper
-    schedule, report and log, bit for bit.
-
-    Args:
-        model: An arm scene (see :func:`lynxsim.sim.arm.model.load_arm_scene`).
-        trajectories: The joint trajectories.
-        task: Task name for the reports.
-        settle_s: Hold time after each trajectory [s].
-        gripper_cmds: Gripper opening [m] over trajectory time [s], one per
-            trajectory (None: no gripper command in any run).
-        nthread: Threads to use, the caller's included (None: one per CPU).
-        progress: Called with the fraction of the stepping done, now and then
-            (see :func:`batch_rollout`).
-
-    Returns:
-        One :class:`~lynxsim.sim.summary.Playback` per trajectory, in order.
-
-    Raises:
-        InvalidInputError: ``gripper_cmds`` and ``trajectories`` differ in length.
-    """
-    grippers = [None] * len(trajectories) if gripper_cmds is None else list(gripper_cmds)
-    if len(grippers) != len(trajectories):
-        raise InvalidInputError(
-            f"{len(grippers)} gripper schedules for {len(trajectories)} trajectories"
-        )
-    dt = float(model.opt.timestep)
-    runs = []
-    for trajectory, gripper in zip(trajectories, grippers, strict=True):
-        q_cmd = trajectory.sample(physics_grid(trajectory.duration, dt)).q
-        runs.append(
-            BatchRun(
-                q_cmd=q_cmd,
-                tool_ref=tool_pose(q_cmd).position,
-                task=task,
-                trajectory=trajectory.kind.value,
-                gripper_cmd=gripper,
-            )
-        )
-    logs = batch_rollout(
-        model, arm_binding(model), runs, nthread=nthread, settle_s=settle_s, progress=progress
-    )
-    return [Playback(report=summarize(log), log=log) for log in logs]

@@ -5,9 +5,9 @@ was: time, state, forces, tool, the carried geoms' poses and MuJoCo's raw
 contact list; a Python loop fills it from ``MjData`` step by step.
 :class:`SensedRecorder` fills it from natively stepped chunks
 (:class:`SensedChunk`: states and the recording sensors,
-:mod:`lynxsim.sim.sensors`), chunk by chunk in step order, and computes the
+:mod:`lynxsim.sim.stepping.sensors`), chunk by chunk in step order, and computes the
 clearances of each chunk as it comes, so that this Python work can overlap with
-the stepping of the next chunk (:mod:`lynxsim.sim.overlap`).
+the stepping of the next chunk (:mod:`lynxsim.sim.stepping.overlap`).
 """
 
 from __future__ import annotations
@@ -25,7 +25,7 @@ from lynxsim.sim.collision import (
     CollisionGroups,
     classify_contacts,
 )
-from lynxsim.sim.sensors import RecordingLayout
+from lynxsim.sim.stepping.sensors import RecordingLayout
 
 __all__ = ["SensedChunk", "SensedRecorder", "StepRecords"]
 

@@ -1,8 +1,8 @@
 """A natively stepped run's records do not depend on how it is cut, nor on a helper thread.
 
-:class:`lynxsim.sim.records.SensedRecorder` makes a run's records chunk by
+:class:`lynxsim.sim.stepping.records.SensedRecorder` makes a run's records chunk by
 chunk (each state's sensors sit in the next step's row, across chunk
-boundaries); :func:`lynxsim.sim.rollout.chunk_bounds` says how a run is cut;
+boundaries); :func:`lynxsim.sim.stepping.native.chunk_bounds` says how a run is cut;
 ``rollout`` steps on a helper thread where a second CPU is free. Any cut, and
 either way of stepping, must give the same records and log, bit for bit.
 """
@@ -19,19 +19,20 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from mujoco import rollout as native
 
-import lynxsim.sim.rollout as rollout_module
+import lynxsim.sim.stepping.native as native_module
 from lynxsim.arm import tool_pose
 from lynxsim.arm.task import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm
+from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
-from lynxsim.sim.records import SensedChunk, SensedRecorder, StepRecords
-from lynxsim.sim.rollout import chunk_bounds, plan_commands, rest_at_start
-from lynxsim.sim.sensors import RecordingLayout
+from lynxsim.sim.stepping.commands import physics_grid, plan_commands, rest_at_start
+from lynxsim.sim.stepping.native import chunk_bounds
+from lynxsim.sim.stepping.records import SensedChunk, SensedRecorder, StepRecords
+from lynxsim.sim.stepping.sensors import RecordingLayout
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[3]
 THREE_OBSTACLES = load_task(ROOT / "tasks" / "three_obstacles.toml")
 
 
@@ -93,7 +94,7 @@ def test_a_run_without_a_helper_thread_logs_the_same(monkeypatch):
     gripper = pick_and_place_gripper(trajectory.duration)
     model = load_arm_scene(task.scene)
     shared = play_arm(model, trajectory, task=task.name, gripper_cmd=gripper)
-    monkeypatch.setattr(rollout_module, "cpu_count", lambda: 1)
+    monkeypatch.setattr(native_module, "cpu_count", lambda: 1)
     alone = play_arm(model, trajectory, task=task.name, gripper_cmd=gripper)
     assert alone.report == shared.report
     for name in ("time_s", "qpos", "force", "tool", "clearance_m", "contact_step", "contact_geoms"):
@@ -112,12 +113,12 @@ def test_chunks_cover_the_run_in_order_short_at_either_end(steps):
     assert all(a < b for a, b in bounds)
     assert all(b == c for (_, b), (c, _) in itertools.pairwise(bounds))
     sizes = [b - a for a, b in bounds]
-    assert max(sizes) <= rollout_module._CHUNK_MOST
-    assert sizes[0] <= rollout_module._CHUNK_FIRST
-    if steps >= 4 * rollout_module._CHUNK_MOST:
-        assert sizes[-1] == rollout_module._CHUNK_LAST
+    assert max(sizes) <= native_module._CHUNK_MOST
+    assert sizes[0] <= native_module._CHUNK_FIRST
+    if steps >= 4 * native_module._CHUNK_MOST:
+        assert sizes[-1] == native_module._CHUNK_LAST
         # no short chunk in the middle: the stepping may run only so many chunks ahead
-        middle = [s for s in sizes if s > rollout_module._CHUNK_MOST // 2]
+        middle = [s for s in sizes if s > native_module._CHUNK_MOST // 2]
         assert max(middle) - min(middle) <= 1
 
 
