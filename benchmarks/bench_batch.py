@@ -42,8 +42,8 @@ REPEATS = 3
 PARTS = {
     "native stepping (mujoco.batch)": ("batch.py", "_step_natively"),
     "records of the stepped chunks (Python)": ("records.py", "_process"),
-    "  of which bounds of the clearances": ("collision.py", "_bounds"),
-    "  of which exact clearances (mj_geomDistance)": ("collision.py", "row"),
+    "  of which bounds of the clearances": ("clearance.py", "_bounds"),
+    "  of which exact clearances (mj_geomDistance)": ("clearance.py", "row"),
     "  of which contact lists of gated states (mj_collision)": (
         "~",
         "<built-in method mujoco._functions.mj_collision>",

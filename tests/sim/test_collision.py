@@ -29,9 +29,9 @@ from lynxsim.sim.collision import (
     ClearanceGeometry,
     CollisionCheck,
     CollisionChecker,
-    _bounds,
     classify_contacts,
 )
+from lynxsim.sim.collision.clearance import _bounds
 from lynxsim.sim.stepping.log import PlaybackLog
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
