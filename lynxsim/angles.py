@@ -1,4 +1,4 @@
-"""Angles shared by both robots: wrapping and the slack on joint-range tests.
+"""Angles shared by both robots: wrapping, the slack on joint-range tests, a quaternion's yaw.
 
 Pure NumPy and :mod:`math`; the arm (:mod:`lynxsim.arm`), the 3-RRR robot
 (:mod:`lynxsim.rrr`) and the trajectories (:mod:`lynxsim.traj`) read these and
@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from lynxsim.inputs import real_array
 
-__all__ = ["LIMIT_TOL", "wrap_angle", "wrap_angle_float"]
+__all__ = ["LIMIT_TOL", "quat_yaw", "wrap_angle", "wrap_angle_float"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -69,3 +69,14 @@ def wrap_angle_float(angle: float) -> float:
     (the caller checks: this path skips the test).
     """
     return round(angle * _INV_TAU) * -_TAU + angle
+
+
+def quat_yaw(w: float, x: float, y: float, z: float) -> float:
+    """Yaw of a unit quaternion ``(w, x, y, z)`` (MuJoCo's order): its turn about z [rad].
+
+    The first of its z-y-x Euler angles, in [-pi, pi]: for a rotation about z
+    alone, the angle of that rotation (a planar body's heading, a cube lying on
+    the table). Plain floats and :func:`math.atan2`: cheap enough to run every
+    physics step.
+    """
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))

@@ -107,8 +107,6 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
         InvalidInputError: A run option of another robot (``--mode``, ``--no-obstacle``) or a
             ``--camera`` the robot's model lacks; the message names the flag and the robot.
     """
-    import mujoco
-
     from lynxsim.resources import model_path
     from lynxsim.robots import ROBOTS, robot, sim_adapter
 
@@ -126,8 +124,9 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
         flag = "--" + option.replace("_", "-")
         raise InvalidInputError(f"{flag} applies only to tasks of {owners}; {task_is}")
     if args.camera is not None:
-        model = mujoco.MjModel.from_xml_path(str(model_path(entry.model)))
-        cameras = [model.camera(i).name for i in range(model.ncam)]
+        from lynxsim.sim.render import model_cameras
+
+        cameras = model_cameras(model_path(entry.model))
         if args.camera not in cameras:
             raise InvalidInputError(
                 f"--camera {args.camera!r}: the {entry.title} model has no such camera; "

@@ -7,7 +7,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, WorkColumn, _real
+from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, WorkColumn
+from lynxsim.envs.config import real_option
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, PolarRegion
 from lynxsim.sim.arm.model import CUBE_BODY
 
@@ -278,7 +279,7 @@ class PickAndPlaceEnv(LynxArmEnv):
     """Range of goal heights above the resting height when in the air [m]."""
 
     def __init__(self, *, goal_in_air_prob: float = 0.5, **kwargs: Any) -> None:
-        self.goal_in_air_prob = _real(goal_in_air_prob, "goal_in_air_prob", 0.0, 1.0)
+        self.goal_in_air_prob = real_option(goal_in_air_prob, "goal_in_air_prob", 0.0, 1.0)
         super().__init__(**kwargs)
         m = self.model
         body = m.body(CUBE_BODY)

@@ -10,7 +10,7 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 
-__all__ = ["RewardType", "collision_flags", "goal_distance", "goal_reward"]
+__all__ = ["GoalRewards", "RewardType", "collision_flags", "goal_distance", "goal_reward"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -74,3 +74,66 @@ def collision_flags(info: Any, shape: tuple[int, ...]) -> npt.NDArray[np.bool_]:
         raise InvalidInputError(
             f"info holds {flags.size} collision flags for goals of batch shape {shape}"
         ) from None
+
+
+class GoalRewards:
+    """The goal-conditioned API of an env (Gymnasium-Robotics' ``GoalEnv``), vectorised.
+
+    The env sets the four attributes below; :meth:`compute_reward` then gives
+    the reward of any goals and infos, for a step or a relabelled batch.
+
+    Attributes:
+        distance_threshold: Success radius around the goal [m].
+        reward_type: Sparse or dense.
+        collision_penalty: Subtracted on a step with arm–obstacle contact, >= 0.
+        terminate_on_collision: Whether such a contact ends the episode.
+    """
+
+    distance_threshold: float
+    reward_type: RewardType
+    collision_penalty: float
+    terminate_on_collision: bool
+
+    def compute_reward(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> FloatArray:
+        """Reward of goals, vectorised over leading axes (for hindsight relabelling).
+
+        Equals the reward the env's ``step`` returned for the same goals and info, bit for bit.
+
+        Args:
+            achieved_goal: Achieved goals, shape (..., 3) [m].
+            desired_goal: Desired goals, shape (..., 3) [m].
+            info: The step's info dict, a sequence (or object array) of such dicts,
+                or a dict of arrays (a vector env's infos). Read only when
+                ``collision_penalty > 0`` (its ``"collision"`` entries).
+
+        Returns:
+            Rewards, shape (...).
+        """
+        d = goal_distance(achieved_goal, desired_goal)
+        reward = goal_reward(d, self.distance_threshold, self.reward_type)
+        if self.collision_penalty == 0.0:
+            return reward + 0.0
+        flags = collision_flags(info, d.shape)
+        total: FloatArray = reward + np.where(flags, -self.collision_penalty, 0.0)
+        return total
+
+    def compute_terminated(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> npt.NDArray[np.bool_]:
+        """Termination of goals and infos (vectorised like :meth:`compute_reward`).
+
+        True only on arm–obstacle contact with ``terminate_on_collision``;
+        reaching the goal does not end an episode.
+        """
+        shape = np.shape(np.asarray(achieved_goal))[:-1]
+        if not self.terminate_on_collision:
+            return np.zeros(shape, dtype=bool)
+        return np.asarray(collision_flags(info, shape), dtype=bool)
+
+    def compute_truncated(
+        self, achieved_goal: npt.ArrayLike, desired_goal: npt.ArrayLike, info: Any
+    ) -> npt.NDArray[np.bool_]:
+        """Always False: the time limit is ``max_episode_steps`` (a wrapper)."""
+        return np.zeros(np.shape(np.asarray(achieved_goal))[:-1], dtype=bool)

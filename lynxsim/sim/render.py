@@ -14,6 +14,7 @@ from __future__ import annotations
 import enum
 import itertools
 import math
+import os
 from dataclasses import dataclass, field
 from types import TracebackType
 
@@ -31,6 +32,8 @@ __all__ = [
     "Quality",
     "RenderSettings",
     "SceneRenderer",
+    "camera_names",
+    "model_cameras",
     "simplify_polyline",
 ]
 
@@ -183,6 +186,20 @@ class PathTrace:
         return self.points[idx]
 
 
+def camera_names(model: mujoco.MjModel) -> tuple[str, ...]:
+    """The names of a model's cameras, in id order."""
+    return tuple(model.camera(i).name for i in range(model.ncam))
+
+
+def model_cameras(path: str | os.PathLike[str]) -> tuple[str, ...]:
+    """The cameras of the model in an MJCF file, in id order (the file is compiled).
+
+    Raises:
+        ValueError: MuJoCo cannot load the file.
+    """
+    return camera_names(mujoco.MjModel.from_xml_path(os.fspath(path)))
+
+
 class SceneRenderer:
     """A MuJoCo renderer bound to one model, camera and quality preset.
 
@@ -205,7 +222,7 @@ class SceneRenderer:
             )
         self._camera = mujoco.mj_name2id(model, int(mujoco.mjtObj.mjOBJ_CAMERA), settings.camera)
         if self._camera < 0:
-            names = [model.camera(i).name for i in range(model.ncam)]
+            names = list(camera_names(model))
             raise InvalidInputError(f"no camera named {settings.camera!r}; available: {names}")
         if settings.quality is not Quality.DEFAULT:
             model.vis.quality.offsamples = 0

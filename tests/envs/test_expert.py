@@ -11,7 +11,7 @@ import pytest
 from lynxsim.arm import LYNX_ARM, ik_nearest
 from lynxsim.envs import PickAndPlaceExpert, Randomization, ReachExpert, evaluate
 from lynxsim.envs.evaluation import run_episode
-from lynxsim.envs.expert import _Planner
+from lynxsim.envs.routes import Planner
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, TOP_DOWN_PITCH_RAD
 from lynxsim.errors import InvalidInputError
 
@@ -124,6 +124,6 @@ def test_expert_plans_from_a_command_a_rounding_error_past_a_joint_limit():
     status, goal = ik_nearest(0.149, -0.145, CARRY_HEIGHT_M, TOP_DOWN_PITCH_RAD, math.pi, start)
     assert status == 0
     assert goal is not None
-    route = _Planner(u, u.controller).route(start, tuple(goal), grasped=True)
+    route = Planner(u, u.controller).route(start, tuple(goal), grasped=True)
     assert route is not None
     assert math.dist(route.end[:3], (0.149, -0.145, CARRY_HEIGHT_M)) < 1e-6

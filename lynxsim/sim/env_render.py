@@ -1,5 +1,7 @@
 """Frames, windows and image observations for the envs, made lazily where they are needed.
 
+The envs (:mod:`lynxsim.envs`) reach MuJoCo's rendering through this module.
+
 ``rgb_array`` frames and image observations (:class:`PixelRenderer`, on GL
 contexts of their own) come from :class:`~lynxsim.sim.render.SceneRenderer`
 (EGL off-screen on a headless machine), ``human`` from a passive
@@ -18,9 +20,9 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError, LynxsimError
-from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer
+from lynxsim.sim.render import Overlay, RenderSettings, SceneRenderer, camera_names
 
-__all__ = ["RENDER_MODES", "EnvRenderer", "PixelRenderer", "has_display"]
+__all__ = ["RENDER_MODES", "EnvRenderer", "PixelRenderer", "check_frame", "has_display"]
 
 RENDER_MODES = ("human", "rgb_array")
 
@@ -31,6 +33,26 @@ _gl_pid: int | None = None
 def has_display() -> bool:
     """Whether a display server is named in the environment (X11 or Wayland)."""
     return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
+def check_frame(model: mujoco.MjModel, settings: RenderSettings) -> None:
+    """Refuse a frame larger than the model's off-screen buffer or an unknown camera.
+
+    An env checks its frames at construction, so that a bad argument fails
+    where it is given and not at the first ``render()``.
+
+    Raises:
+        InvalidInputError: The frame exceeds the buffer, or the camera is not the model's.
+    """
+    buf_w, buf_h = int(model.vis.global_.offwidth), int(model.vis.global_.offheight)
+    if settings.width > buf_w or settings.height > buf_h:
+        raise InvalidInputError(
+            f"frame {settings.width}x{settings.height} exceeds the model's off-screen buffer "
+            f"{buf_w}x{buf_h} px"
+        )
+    if mujoco.mj_name2id(model, int(mujoco.mjtObj.mjOBJ_CAMERA), settings.camera) < 0:
+        names = ", ".join(camera_names(model))
+        raise InvalidInputError(f"no camera named {settings.camera!r}; cameras: {names}")
 
 
 def _scene_renderer(model: mujoco.MjModel, settings: RenderSettings) -> SceneRenderer:
