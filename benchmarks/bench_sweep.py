@@ -2,7 +2,7 @@
 
 The sweep: the report's cylinder on a 20 mm grid over the table (1,836
 placements) for one task and two trajectory types, judged on recorded runs
-(:mod:`lynxsim.sweep.recorded`). The baseline, measured in the same run: the
+(:mod:`lynxsim.sim.recorded`). The baseline, measured in the same run: the
 same rows played one by one (a physics run each, as ``lynxsim play --no-video``
 does), on a sample of them. Every backend starts from an empty folder (no
 shard reused)::

@@ -12,6 +12,7 @@ from pathlib import Path
 from lynxsim.bounds import MAX_JOBS
 from lynxsim.cli.units import bounded_int
 from lynxsim.errors import InvalidInputError
+from lynxsim.verdicts import Verdict
 
 __all__ = ["register"]
 
@@ -77,7 +78,7 @@ def _sweep(args: argparse.Namespace) -> int:
         f"sweep {spec.name}: {len(table['task']):,} runs ({outcome.computed} shards computed, "
         f"{outcome.reused} reused)"
     )
-    header = ("clear", "collided", "start_overlap", "invalid", "no_motion")
+    header = Verdict.labels()
     print(f"{'task':20s} {'type':10s} " + " ".join(f"{h:>13s}" for h in header))
     for task, kinds in counts.items():
         for kind, c in kinds.items():

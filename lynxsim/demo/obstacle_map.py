@@ -10,6 +10,7 @@ import numpy as np
 
 from lynxsim.demo.jobs import Job
 from lynxsim.sim.recording import ProgressFn
+from lynxsim.verdicts import Verdict
 
 __all__ = ["MAP_DIR", "MAP_STEP_MM", "MapSummary", "map_job"]
 
@@ -46,8 +47,9 @@ def _draw(out: Path, tasks: Path, progress: ProgressFn | None) -> MapSummary:
     keys = list(dict.fromkeys(zip(table["task"].tolist(), table["type"].tolist())))
     rows = []
     for task, kind in keys:
-        mine = (table["task"] == task) & (table["type"] == kind) & (table["verdict"] != "invalid")
-        clear = int(np.sum(mine & (table["verdict"] == "clear")))
+        valid = table["verdict"] != Verdict.INVALID.label
+        mine = (table["task"] == task) & (table["type"] == kind) & valid
+        clear = int(np.sum(mine & (table["verdict"] == Verdict.CLEAR.label)))
         rows.append((str(task), str(kind), int(np.sum(mine)), clear))
     return MapSummary(tuple(rows), tuple(maps))
 

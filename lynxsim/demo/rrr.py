@@ -25,12 +25,12 @@ from lynxsim.fileio import atomic_path, file_stem
 from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
 from lynxsim.rrr import mode_label
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.task import path_from_task
 from lynxsim.rrr.workspace import workspace_maps
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
-from lynxsim.sim.rrr.model import HOME_MODE
 from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.tasks import Task, find_tasks
 

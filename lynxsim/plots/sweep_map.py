@@ -16,16 +16,18 @@ from lynxsim.plots.obstacles import draw_obstacles_top
 from lynxsim.plots.style import new_figure, plain_text, save_figure
 from lynxsim.scene import Obstacle, Table
 from lynxsim.traj.waypoints import ArmPose
+from lynxsim.verdicts import Verdict
 
 __all__ = ["VERDICT_COLOURS", "plot_obstacle_map"]
 
 VERDICT_COLOURS = {
-    "collided": "#d62728",
-    "start_overlap": "#6b0d0d",
-    "invalid": "#bdbdbd",
-    "no_motion": "#ffffff",
+    Verdict.COLLIDED.label: "#d62728",
+    Verdict.START_OVERLAP.label: "#6b0d0d",
+    Verdict.INVALID.label: "#bdbdbd",
+    Verdict.NO_MOTION.label: "#ffffff",
 }
 """Colour of each verdict but ``clear`` (clear cells are coloured by their clearance)."""
+CLEAR = Verdict.CLEAR.label
 
 _CLEARANCE_CMAP = "viridis"
 _CLEARANCE_TOP_MM = 100.0
@@ -76,7 +78,7 @@ def plot_obstacle_map(
         raise InvalidInputError("a map needs rows with obstacle placements")
     verdict = np.asarray(rows["verdict"]).astype(str)
     clearance = np.asarray(rows["min_clearance_m"], dtype=float) * 1e3
-    clear = verdict == "clear"
+    clear = verdict == CLEAR
     top = _CLEARANCE_TOP_MM
     fig = new_figure(8.0, 9.0)
     ax = fig.add_subplot(1, 1, 1)
@@ -151,9 +153,9 @@ def plot_obstacle_map(
             px, py = pose.position[0] * 1e3, pose.position[1] * 1e3
             ax.plot([px], [py], marker="x", color="w", markersize=7, mew=2)
             ax.annotate(pose.name, (px, py), textcoords="offset points", xytext=(4, 4), color="w")
-    counts = {name: int((verdict == name).sum()) for name in ("clear", *VERDICT_COLOURS)}
+    counts = {name: int((verdict == name).sum()) for name in (CLEAR, *VERDICT_COLOURS)}
     handles = [Patch(color=VERDICT_COLOURS[n], label=f"{n} ({counts[n]})") for n in VERDICT_COLOURS]
-    handles.insert(0, Patch(color="#21918c", label=f"clear ({counts['clear']}): clearance"))
+    handles.insert(0, Patch(color="#21918c", label=f"{CLEAR} ({counts[CLEAR]}): clearance"))
     handles.append(
         Patch(facecolor="none", edgecolor="k", linestyle="--", label="the task's placement (+)")
     )
@@ -165,7 +167,7 @@ def plot_obstacle_map(
     if len(own):
         k = int(own[0])
         shown = verdict[k]
-        if shown == "clear":
+        if shown == CLEAR:
             shown += f", clearance {clearance[k]:.1f} mm"
         elif np.isfinite(float(rows["first_contact_s"][k])):
             shown += f" at {float(rows['first_contact_s'][k]):.3f} s"

@@ -1,7 +1,7 @@
 """The report's Figure 20 poses judged by simulation (settling in every mode, and a pull).
 
-Uses :func:`lynxsim.sim.rrr.verify.check_pose` and :func:`~lynxsim.sim.rrr.verify.pull_toward`
-on the poses of :data:`lynxsim.reproduce.rrr_formulas.FIGURE20_POSES`.
+:func:`lynxsim.sim.rrr.judge.judge_poses` on the poses of
+:data:`lynxsim.reproduce.rrr_formulas.FIGURE20_POSES`, and the verdicts as text.
 """
 
 from __future__ import annotations
@@ -10,21 +10,13 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-import mujoco
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.reproduce.rrr_formulas import FIGURE20_POSES, REPORT_MODE, Figure20Pose
-from lynxsim.rrr import N_MODES, ik
-from lynxsim.sim.rrr.model import RRRIds, load_rrr_scene
-from lynxsim.sim.rrr.verify import (
-    ORIENTATION_TOL_RAD,
-    POSITION_TOL_M,
-    PoseCheck,
-    PullCheck,
-    check_pose,
-    pull_toward,
-)
+from lynxsim.rrr import N_MODES
+from lynxsim.sim.rrr.judge import PoseJudgement, judge_poses
+from lynxsim.sim.rrr.verify import ORIENTATION_TOL_RAD, POSITION_TOL_M
 
 __all__ = ["Figure20Sim", "figure20_simulation", "format_figure20_simulation"]
 
@@ -32,42 +24,14 @@ FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class Figure20Sim:
-    """One of the report's Figure 20 poses judged by simulation.
+class Figure20Sim(PoseJudgement):
+    """One of the report's Figure 20 poses judged by simulation (:func:`judge_poses`).
 
     Attributes:
         pose: The report's pose (mm, deg) and what the report says.
-        ik_reachable: The inverse kinematics finds the pose (every working mode).
-        failing_legs: 1-based legs that cannot reach it (empty when reachable).
-        checks: :func:`check_pose` in every working mode (empty when unreachable).
-        pull: :func:`pull_toward` from ``home`` (actuators off, no IK).
     """
 
     pose: Figure20Pose
-    ik_reachable: bool
-    failing_legs: tuple[int, ...]
-    checks: tuple[PoseCheck, ...]
-    pull: PullCheck
-
-    @property
-    def reached_modes(self) -> tuple[int, ...]:
-        """Working modes in which the commanded pose settled within tolerance."""
-        return tuple(c.mode for c in self.checks if c.reached)
-
-    @property
-    def clear_modes(self) -> tuple[int, ...]:
-        """Working modes in which no links overlap at the pose."""
-        return tuple(c.mode for c in self.checks if not c.interference)
-
-    @property
-    def reachable(self) -> bool:
-        """The simulation's verdict: reached in some working mode, or by the pull.
-
-        Commanded with the IK's actuated angles, the platform settles at the
-        pose in some working mode; or, where the IK finds nothing, the pulled
-        platform gets there anyway (it does not, for the poses tried).
-        """
-        return bool(self.reached_modes) or self.pull.reached
 
 
 def _radians(p: Figure20Pose) -> FloatArray:
@@ -88,27 +52,17 @@ def figure20_simulation(
     Returns:
         One :class:`Figure20Sim` per pose.
     """
-    model = load_rrr_scene()
-    data = mujoco.MjData(model)
-    ids = RRRIds.from_model(model)
-    out = []
-    for spec in poses:
-        target = _radians(spec)
-        result = ik(target)
-        ok = bool(result.ok)
-        checks = (
-            tuple(check_pose(model, data, target, int(m), ids=ids) for m in modes) if ok else ()
+    judged = judge_poses([_radians(p) for p in poses], modes=modes)
+    return [
+        Figure20Sim(
+            ik_reachable=j.ik_reachable,
+            failing_legs=j.failing_legs,
+            checks=j.checks,
+            pull=j.pull,
+            pose=p,
         )
-        out.append(
-            Figure20Sim(
-                pose=spec,
-                ik_reachable=ok,
-                failing_legs=result.failing_legs(),
-                checks=checks,
-                pull=pull_toward(model, data, target, ids=ids),
-            )
-        )
-    return out
+        for p, j in zip(poses, judged, strict=True)
+    ]
 
 
 def _mm_deg(position_m: float, angle_rad: float) -> str:

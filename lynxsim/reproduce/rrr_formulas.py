@@ -18,6 +18,7 @@ import numpy.typing as npt
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, as_pose_array, rotation
 from lynxsim.rrr.ik import ik
 from lynxsim.rrr.jacobian import singularity_measures
+from lynxsim.rrr.modes import HOME_MODE
 
 __all__ = [
     "FIGURE20_POSES",
@@ -63,9 +64,10 @@ FIGURE20_POSES = (
 """Figure 20's six poses, and the pose its text says "lies outside of the workspace"."""
 
 
-REPORT_MODE = 7
+REPORT_MODE = HOME_MODE
 """Working mode the report draws: ``arm.m`` takes ``theta = 2 atan(t_1)`` with the
-``+`` root of its half-angle quadratic, which is elbow sign -1 on every leg."""
+``+`` root of its half-angle quadratic, which is elbow sign -1 on every leg (the
+model's home mode, :data:`lynxsim.rrr.modes.HOME_MODE`)."""
 
 
 def report_leg_spans(pose: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:

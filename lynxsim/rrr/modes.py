@@ -34,10 +34,14 @@ import numpy.typing as npt
 from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError, short
 
-__all__ = ["MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
+__all__ = ["HOME_MODE", "MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
 
 N_MODES = 8
 """Number of working modes (two elbow branches for each of three legs)."""
+HOME_MODE = 7
+"""Working mode of the model's ``home`` pose and of runs by default: elbow signs - - -,
+the mode the university report draws (its ``arm.m`` takes the ``+`` root of its
+half-angle quadratic)."""
 
 MODE_SIGNS: npt.NDArray[np.int8] = np.array(
     [[-1 if (m >> leg) & 1 else 1 for leg in range(3)] for m in range(N_MODES)], dtype=np.int8

@@ -5,16 +5,17 @@ what varies: where an obstacle stands (a grid or random placements), its
 radius, the cube's start, the planner's seed. :func:`run_sweep` computes the
 rows shard by shard on a backend (this process, a process pool, or Ray:
 :mod:`lynxsim.sweep.ray_backend`, imported only when asked for) and writes one
-table (:mod:`lynxsim.sweep.table`). Obstacle placements are judged on one
-physics run per (task, type, cube) recorded without the obstacle
-(:mod:`lynxsim.sweep.recorded` says why that is exact), which makes a map of
-thousands of placements cost about one run.
+table (:mod:`lynxsim.sweep.table`). Obstacle placements are judged
+(:mod:`lynxsim.sim.sweep_judge`) on one physics run per (task, type, cube)
+recorded without the obstacle (:mod:`lynxsim.sim.recorded` says why that is
+exact), which makes a map of thousands of placements cost about one run.
 
 Ray is never imported by this package itself.
 """
 
-from lynxsim.sweep.placements import PlacementJudge, PlacementResults, Verdict
-from lynxsim.sweep.recorded import RecordedRun, ReplayMismatchError, record_run
+from lynxsim.sim.arm.recorded import record_run
+from lynxsim.sim.recorded import RecordedRun, ReplayMismatchError
+from lynxsim.sim.sweep_judge import PlacementJudge, PlacementResults
 from lynxsim.sweep.runner import (
     Group,
     LocalBackend,
@@ -27,6 +28,7 @@ from lynxsim.sweep.runner import (
 )
 from lynxsim.sweep.spec import ObstacleSweep, SweepFileError, SweepSpec, load_sweep, parse_sweep
 from lynxsim.sweep.table import COLUMNS, VERDICTS, Table, read_npz, write_csv, write_npz
+from lynxsim.verdicts import Verdict
 
 __all__ = [
     "COLUMNS",

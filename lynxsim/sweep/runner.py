@@ -10,7 +10,7 @@ this process, in a process pool (:class:`LocalBackend`) or as Ray tasks
 
 For waypoint types, a shard plays its group's run once without the swept
 obstacle and judges its placements on the recorded states
-(:mod:`lynxsim.sweep.recorded`, :mod:`lynxsim.sweep.placements`); planned runs,
+(:mod:`lynxsim.sim.arm.recorded`, :mod:`lynxsim.sim.sweep_judge`); planned runs,
 whose path depends on where the obstacle stands, are planned and played row by
 row, and a sweep without an obstacle plays each row.
 
@@ -35,13 +35,14 @@ from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import file_stem, safe_stem
 from lynxsim.inputs import count
 from lynxsim.scene import Box, Obstacle, Scene
+from lynxsim.sim.arm.recorded import arm_scene_model, record_run
 from lynxsim.sim.report import RunReport
-from lynxsim.sweep.placements import PlacementJudge, Verdict
-from lynxsim.sweep.recorded import record_run
+from lynxsim.sim.sweep_judge import PlacementJudge
 from lynxsim.sweep.spec import SweepSpec
 from lynxsim.sweep.table import Table, concat, empty, read_npz, write_npz
 from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory, TrajectoryKind
+from lynxsim.verdicts import Verdict
 
 __all__ = [
     "Backend",
@@ -181,7 +182,7 @@ def _fill_inputs(
 def _report_row(table: Table, i: int, report: RunReport, method: str) -> None:
     """Row ``i`` from a run's own report (everything as ``lynxsim play`` reports it)."""
     verdict = report.obstacle
-    table["verdict"][i] = "collided" if report.collided else "clear"
+    table["verdict"][i] = (Verdict.COLLIDED if report.collided else Verdict.CLEAR).label
     table["collided"][i] = report.collided
     if verdict is not None and verdict.first_time_s is not None:
         table["first_contact_s"][i] = verdict.first_time_s
@@ -235,13 +236,13 @@ def _physics_rows(
                 task, obstacle, spec.obstacle.x_mm[j] / 1000.0, spec.obstacle.y_mm[j] / 1000.0
             )
         if placed is None:
-            table["verdict"][i], table["method"][i] = "invalid", "none"
+            table["verdict"][i], table["method"][i] = Verdict.INVALID.label, "none"
             continue
         try:
             trajectory = _trajectory(placed, kind, seed)
             report = run_arm_trajectory(trajectory, task=placed.name, scene=placed.scene).report
         except LynxsimError:
-            table["verdict"][i], table["method"][i] = "no_motion", "none"
+            table["verdict"][i], table["method"][i] = Verdict.NO_MOTION.label, "none"
             continue
         _report_row(table, i, report, "physics")
 
@@ -263,22 +264,21 @@ def _recorded_rows(
         trajectory = _trajectory(task, shard.group.kind, -1)
         run = record_run(trajectory, task=task.name, scene=base)
     except LynxsimError:
-        table["verdict"][:], table["method"][:] = "no_motion", "none"
+        table["verdict"][:], table["method"][:] = Verdict.NO_MOTION.label, "none"
         return
     if hook is not None:
         hook(shard.index)
-    judged = PlacementJudge(run, obstacle).judge(
+    judged = PlacementJudge(run, obstacle, arm_scene_model).judge(
         spec.obstacle.x_mm[shard.start : shard.stop] / 1000.0,
         spec.obstacle.y_mm[shard.start : shard.stop] / 1000.0,
     )
     report = run.report
     base_hit = report.obstacle.first_time_s if report.obstacle is not None else None
     base_first = report.obstacle.first_obstacle if report.obstacle is not None else None
-    names = ("clear", "collided", "start_overlap", "invalid")
     table["method"][:] = "recorded"
     for i in range(shard.rows):
-        code = int(judged.verdict[i])
-        table["verdict"][i] = names[code]
+        code = Verdict(int(judged.verdict[i]))
+        table["verdict"][i] = code.label
         if code == Verdict.INVALID:
             continue
         if code == Verdict.START_OVERLAP:
@@ -292,7 +292,7 @@ def _recorded_rows(
                 t, name = base_hit, base_first or ""
             else:
                 name = obstacle.name
-            table["verdict"][i] = "collided"
+            table["verdict"][i] = Verdict.COLLIDED.label
             table["first_contact_s"][i], table["first_obstacle"][i] = t, name
             continue
         # Never touched: the run with the obstacle there is the recorded run, exactly.
@@ -303,7 +303,7 @@ def _recorded_rows(
         table["min_clearance_m"][i], table["min_clearance_time_s"][i] = clearance, when
         _tracking(table, i, report)
         if base_hit is not None:
-            table["verdict"][i], table["collided"][i] = "collided", True
+            table["verdict"][i], table["collided"][i] = Verdict.COLLIDED.label, True
             table["first_contact_s"][i], table["first_obstacle"][i] = base_hit, base_first or ""
 
 
@@ -322,7 +322,7 @@ def compute_shard(spec: SweepSpec, shard: Shard, hook: ShardHook | None = None) 
     try:
         task, obstacle = _variant(spec, shard.group)
     except InvalidInputError:  # an obstacle encloses the moved cube: no such scene
-        table["verdict"][:], table["method"][:] = "invalid", "none"
+        table["verdict"][:], table["method"][:] = Verdict.INVALID.label, "none"
         task, obstacle = spec.tasks[shard.group.task], None
         _fill_inputs(table, spec, shard, task, None)
         return concat([table])

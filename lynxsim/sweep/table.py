@@ -27,7 +27,7 @@ method                    str      recorded (judged on a recorded run), physics 
                                    of its own) or none
 ========================  =======  =====================================================
 
-Rows judged on a recorded run (:mod:`lynxsim.sweep.recorded`) whose obstacle
+Rows judged on a recorded run (:mod:`lynxsim.sim.recorded`) whose obstacle
 was touched leave the clearance, tracking and health NaN / -1: after the first
 contact the real run differs from the recorded one, and only a run of its own
 would tell (its verdict and first contact time are exact).
@@ -46,6 +46,7 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.fileio import atomic_path
+from lynxsim.verdicts import Verdict
 
 __all__ = [
     "COLUMNS",
@@ -86,8 +87,8 @@ COLUMNS: dict[str, str] = {
 }
 """Every column and its NumPy kind, in table order."""
 
-VERDICTS = ("clear", "collided", "start_overlap", "invalid", "no_motion")
-"""The values of the ``verdict`` column."""
+VERDICTS = Verdict.labels()
+"""The values of the ``verdict`` column (:class:`lynxsim.verdicts.Verdict`)."""
 
 
 def empty(rows: int) -> Table:

@@ -10,9 +10,9 @@ import pytest
 
 from lynxsim.errors import InvalidInputError, UnreachablePlatformPoseError
 from lynxsim.rrr import RRR_ROBOT, ik, leg_points, platform_joints
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import actuated_window, wrap_to_window
 from lynxsim.sim.rrr.model import (
-    HOME_MODE,
     HOME_POSE,
     LEG_BASE_JOINTS,
     LEG_ELBOW_JOINTS,

@@ -5,11 +5,11 @@ from __future__ import annotations
 import os
 from dataclasses import dataclass
 
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
 from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.rrr.model import HOME_MODE
 from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import Task

@@ -26,17 +26,16 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.reproduce.rrr_formulas import REPORT_MODE
 from lynxsim.resources import model_path
 from lynxsim.rrr import RRR_ROBOT, ik_one, leg_points
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import wrap_to_window
 from lynxsim.sim.binding import RobotBinding, name_to_id
 from lynxsim.sim.collision import CollisionGroups
 
 __all__ = [
-    "HOME_MODE",
     "HOME_POSE",
     "LEG_BASE_JOINTS",
     "LEG_ELBOW_JOINTS",
@@ -90,8 +89,6 @@ RRR_HOME_KEY = "home"
 RRR_COLLISION_GROUP = 3
 """Geom group of the link capsules that detect link interference."""
 
-HOME_MODE = REPORT_MODE
-"""Working mode of the ``home`` keyframe (7: elbow signs - - -, the mode the report draws)."""
 HOME_POSE: tuple[float, float, float] = (*RRR_ROBOT.base_centre, 0.0)
 """Platform pose of the ``home`` keyframe: centre at ``C_b``, alpha 0 [m, m, rad]."""
 

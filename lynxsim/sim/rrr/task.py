@@ -7,11 +7,12 @@ import os
 import mujoco
 import numpy as np
 
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
 from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.rrr.model import HOME_MODE, RRRIds
+from lynxsim.sim.rrr.model import RRRIds
 from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import Task

@@ -27,11 +27,11 @@ from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.rrr import RRR_ROBOT, ik_one, mode_index, singularity_measures
 from lynxsim.rrr.geometry import as_pose_array
 from lynxsim.rrr.ik import wrap_angle
+from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import actuated_path, platform_path
 from lynxsim.sim.collision import ContactTracker
 from lynxsim.sim.report import ContactPair
 from lynxsim.sim.rrr.model import (
-    HOME_MODE,
     HOME_POSE,
     RRRIds,
     assembly_qpos,

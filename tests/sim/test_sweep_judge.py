@@ -3,17 +3,20 @@
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from lynxsim.scene import Scene
 from lynxsim.sim.arm.planning import task_trajectory
+from lynxsim.sim.arm.recorded import arm_scene_model, record_run
 from lynxsim.sim.arm.task import run_arm_trajectory
-from lynxsim.sweep.placements import PlacementJudge, Verdict
-from lynxsim.sweep.recorded import record_run
+from lynxsim.sim.sweep_judge import PlacementJudge
 from lynxsim.tasks import load_task
-from tests.sweep.conftest import TASKS
+from lynxsim.verdicts import Verdict
+
+TASKS = Path(__file__).resolve().parents[2] / "tasks"
 
 
 @pytest.mark.slow
@@ -28,7 +31,7 @@ def test_judged_box_and_sphere_placements_equal_their_own_runs(name):
     )
     gx, gy = np.meshgrid(np.arange(-250, 451, 50) / 1000.0, np.arange(-500, 501, 50) / 1000.0)
     x, y = gx.reshape(-1), gy.reshape(-1)
-    judged = PlacementJudge(run, obstacle).judge(x, y)
+    judged = PlacementJudge(run, obstacle, arm_scene_model).judge(x, y)
     rng = np.random.default_rng(0)
     for code in (Verdict.CLEAR, Verdict.COLLIDED):
         rows = np.flatnonzero(judged.verdict == code)
