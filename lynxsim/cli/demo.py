@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from lynxsim.arm import frame_origins, ik, tool_pose
+from lynxsim.cli.flags import add_quality_flag, quality_of
 from lynxsim.cli.units import bounded_int
 from lynxsim.reproduce.arm_tables import FK_CASES, TABLE4
 
@@ -59,7 +60,7 @@ def _simulations(args: argparse.Namespace) -> None:
     from lynxsim.demo.rrr import FIGURE20_FILE, rrr_jobs
     from lynxsim.envs.evaluation import EpisodeStats
     from lynxsim.envs.registration import PICK_AND_PLACE_ID
-    from lynxsim.sim.render import Quality, RenderSettings
+    from lynxsim.sim.render import RenderSettings
     from lynxsim.sim.report import RunReport
     from lynxsim.sweep.maps import REPORT_MAP_TASKS
     from lynxsim.tasks import find_tasks
@@ -67,7 +68,7 @@ def _simulations(args: argparse.Namespace) -> None:
     out: Path = args.out_dir
     runs = list(arm_runs(find_tasks(args.tasks, "arm"), lambda m: print(f"skipped: {m}")))
     n_rrr = len(find_tasks(args.tasks, "rrr"))
-    quality = Quality(args.quality)
+    quality = quality_of(args)
     render = RenderSettings(quality=quality)
     jobs: list[Job[RunReport | EpisodeStats | MapSummary | None]] = [
         *arm_jobs(runs, out, render),
@@ -144,13 +145,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         metavar="DIR",
         help="output folder (default videos/)",
     )
-    p.add_argument(
-        "--quality",
-        choices=("fast", "medium", "default"),
-        default="medium",
-        help="rendering preset: fast (no shadows), medium (shadows; default) or default "
-        "(shadows and multisampling, twice the cost of medium)",
-    )
+    add_quality_flag(p)
     p.add_argument(
         "--jobs",
         type=bounded_int(1, 64),

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from lynxsim.cli.context import about_task
+from lynxsim.cli.flags import add_quality_flag, quality_of
 from lynxsim.errors import InvalidInputError
 from lynxsim.fileio import check_destination, output_path
 from lynxsim.sim.report import RunReport
@@ -136,7 +137,7 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
 
 def _play(args: argparse.Namespace) -> int:
     from lynxsim.robots import sim_adapter
-    from lynxsim.sim.render import Quality, RenderSettings
+    from lynxsim.sim.render import RenderSettings
     from lynxsim.tasks import load_task
 
     task = load_task(args.task)
@@ -160,7 +161,7 @@ def _play(args: argparse.Namespace) -> int:
                 video=None if args.no_video else out,
                 render=RenderSettings(
                     camera=args.camera or adapter.default_camera,
-                    quality=Quality(args.quality),
+                    quality=quality_of(args),
                     fps=args.fps,
                 ),
                 progress=update,
@@ -227,13 +228,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         metavar="0..7",
         help="rrr tasks: working mode of the inverse kinematics (default 7, the report's)",
     )
-    p.add_argument(
-        "--quality",
-        choices=("fast", "medium", "default"),
-        default="default",
-        help="rendering preset: fast (no shadows), medium (shadows) or default (shadows and "
-        "multisampling)",
-    )
+    add_quality_flag(p)
     p.add_argument(
         "--fps",
         type=bounded_float(MIN_FPS, MAX_FPS, "frames/s"),

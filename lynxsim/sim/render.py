@@ -11,7 +11,6 @@ creates a context; ``with SceneRenderer(...) as r:`` frees it.
 
 from __future__ import annotations
 
-import enum
 import itertools
 import math
 import os
@@ -24,6 +23,7 @@ import numpy.typing as npt
 
 from lynxsim.bounds import MAX_FPS, MIN_FPS, check_range
 from lynxsim.errors import InvalidInputError
+from lynxsim.sim.quality import Quality
 
 __all__ = [
     "TRACE_TOLERANCE_M",
@@ -57,19 +57,6 @@ _TARGET_SIZE = np.array([_TARGET_RADIUS_M, 0.0, 0.0])
 TRACE_TOLERANCE_M = 0.5e-3
 """Largest distance of a recorded path point from its drawn trace [m]: a third of
 a pixel at 640x480 from the models' cameras (about 1.7 mm per pixel)."""
-
-
-class Quality(enum.Enum):
-    """Rendering presets (CPU time of a 640x480 arm frame with Mesa's llvmpipe, 2 cores).
-
-    FAST: no shadows, no multisampling (~21 ms).
-    MEDIUM: shadows, no multisampling (~64 ms): the look of DEFAULT with jagged edges.
-    DEFAULT: shadows and the model's multisampling (~125 ms).
-    """
-
-    FAST = "fast"
-    MEDIUM = "medium"
-    DEFAULT = "default"
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,8 @@ from pathlib import Path
 import pytest
 
 from lynxsim.cli import build_parser, main, play
+from lynxsim.cli.flags import DEFAULT_QUALITY
+from lynxsim.sim.quality import Quality
 from lynxsim.tasks import load_task
 
 TASKS = Path(__file__).resolve().parents[2] / "tasks"
@@ -272,3 +274,13 @@ def test_flags_of_the_other_robot_are_refused(cli, argv, message):
 def test_flags_of_the_tasks_robot_pass_the_check(argv):
     args = build_parser().parse_args(argv)
     play._check_flags(args, load_task(args.task))
+
+
+def test_demo_and_play_share_one_quality_flag():
+    parser = build_parser()
+    defaults = {parser.parse_args(["demo"]).quality, parser.parse_args(["play", "t.toml"]).quality}
+    assert defaults == {DEFAULT_QUALITY.value}
+    parsers = _parsers(parser)
+    for command in ("demo", "play"):
+        (action,) = [a for a in parsers[(command,)]._actions if a.dest == "quality"]
+        assert list(action.choices or ()) == [q.value for q in Quality]

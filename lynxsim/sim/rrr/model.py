@@ -25,6 +25,7 @@ import mujoco
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import quat_yaw
 from lynxsim.errors import InvalidInputError
 from lynxsim.resources import model_path
 from lynxsim.rrr import RRR_ROBOT, ik_one, leg_points
@@ -323,9 +324,8 @@ def platform_pose(data: mujoco.MjData, ids: RRRIds) -> FloatArray:
     """
     a = ids.platform_qpos
     x, y = data.qpos[a], data.qpos[a + 1]
-    w, qx, qy, qz = data.qpos[a + 3 : a + 7]
-    alpha = np.arctan2(2.0 * (w * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
-    return np.array([x, y, alpha], dtype=float)
+    w, qx, qy, qz = data.qpos[a + 3 : a + 7].tolist()
+    return np.array([x, y, quat_yaw(w, qx, qy, qz)], dtype=float)
 
 
 def loop_closure_errors(data: mujoco.MjData, ids: RRRIds) -> FloatArray:

@@ -18,6 +18,7 @@ import mujoco
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import quat_yaw
 from lynxsim.errors import InvalidInputError
 from lynxsim.rrr.path import ActuatedPath, PlatformPath, actuated_path
 from lynxsim.sim.report import RobotMetrics
@@ -164,7 +165,7 @@ class LoopMonitor:
         x_ref, y_ref, a_ref = self._ref[min(step, len(self._ref) - 1)].tolist()
         a = self._ids.platform_qpos
         x, y, _, w, qx, qy, qz = data.qpos[a : a + 7].tolist()
-        alpha = math.atan2(2.0 * (w * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+        alpha = quat_yaw(w, qx, qy, qz)
         sites = data.site_xpos.tolist()
         turn = (alpha - a_ref + math.pi) % (2.0 * math.pi) - math.pi
         self.loop.append(max(math.dist(sites[t], sites[j]) for t, j in self._loop_sites))

@@ -1,0 +1,20 @@
+"""Rendering presets, apart from the renderer: the command line lists them without MuJoCo."""
+
+from __future__ import annotations
+
+import enum
+
+__all__ = ["Quality"]
+
+
+class Quality(enum.Enum):
+    """Rendering presets (CPU time of a 640x480 arm frame with Mesa's llvmpipe, 2 cores).
+
+    FAST: no shadows, no multisampling (~21 ms).
+    MEDIUM: shadows, no multisampling (~64 ms): the look of DEFAULT with jagged edges.
+    DEFAULT: shadows and the model's multisampling (~125 ms).
+    """
+
+    FAST = "fast"
+    MEDIUM = "medium"
+    DEFAULT = "default"
