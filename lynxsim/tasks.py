@@ -101,6 +101,7 @@ from typing import Any
 
 from lynxsim.bounds import MAX_ANGLE_RAD, MAX_COORDINATE_M, MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, TaskFileError
+from lynxsim.poses import ArmPose, JointPose, PlanarPose
 from lynxsim.robots import ROBOTS, PoseSchema
 from lynxsim.scene import (
     MAX_CUBE_MASS_KG,
@@ -117,28 +118,10 @@ from lynxsim.scene import (
     Sphere,
 )
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.waypoints import ArmPose, JointPose
 
 __all__ = ["PlanarPose", "Task", "TaskPose", "find_tasks", "load_task"]
 
 _MM = 1e-3
-
-
-@dataclass(frozen=True)
-class PlanarPose:
-    """A platform pose of the planar 3-RRR robot.
-
-    Attributes:
-        x: Platform centre x in the base frame [m].
-        y: Platform centre y in the base frame [m].
-        alpha: Platform orientation, counter-clockwise seen from +z [rad].
-        name: Label used in messages and plots.
-    """
-
-    x: float
-    y: float
-    alpha: float
-    name: str = ""
 
 
 TaskPose = ArmPose | JointPose | PlanarPose

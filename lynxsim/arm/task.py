@@ -2,14 +2,15 @@
 
 from __future__ import annotations
 
-from lynxsim.arm.geometry import LYNX_ARM
+from lynxsim.arm.motion.build import generate
+from lynxsim.arm.motion.space import ARM_LIMITS
 from lynxsim.errors import InvalidInputError
+from lynxsim.poses import ArmPose, JointPose
 from lynxsim.tasks import Task
-from lynxsim.traj.build import generate, parse_kind
+from lynxsim.traj.build import parse_kind
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointLimits
 from lynxsim.traj.trajectory import Trajectory
-from lynxsim.traj.waypoints import ArmPose, JointPose
 
 __all__ = ["build_trajectory"]
 
@@ -24,7 +25,7 @@ def build_trajectory(
     Args:
         task: The task (see :func:`lynxsim.tasks.load_task`).
         kind: Trajectory type overriding the task's; ``None`` keeps it.
-        limits: Joint limits; ``None`` for :data:`~lynxsim.traj.limits.DEFAULT_LIMITS`.
+        limits: Joint limits; ``None`` for :data:`~lynxsim.arm.motion.ARM_LIMITS`.
 
     Returns:
         The checked :class:`Trajectory`, with the task's poses as its targets.
@@ -44,8 +45,7 @@ def build_trajectory(
         chosen,
         poses,
         task.durations,
-        limits=DEFAULT_LIMITS if limits is None else limits,
+        limits=ARM_LIMITS if limits is None else limits,
         stretch=task.stretch,
         pass_through=task.pass_through and chosen is TrajectoryKind.RUCKIG,
-        geometry=LYNX_ARM,
     )

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import tool_pose
+from lynxsim.arm.motion import ArmPose, generate
 from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, LimitViolationError, NonFiniteInputError
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
@@ -20,7 +21,7 @@ from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.collision import CLEARANCE_CAP_M, classify_contacts
 from lynxsim.sim.rollout import rollout
 from lynxsim.tasks import load_task
-from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
+from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 
 ROOT = Path(__file__).resolve().parents[2]
 PICK_AND_PLACE = ROOT / "tasks" / "pick_and_place.toml"

@@ -20,22 +20,22 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ik
+from lynxsim.arm.motion import ARM_BOUNDS, ARM_LIMITS, arm_lipschitz, resolve_waypoints
 from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan import (
     PlannedMotion,
     PlannerName,
     ProgressCallback,
-    arm_lipschitz,
     plan_through,
 )
+from lynxsim.poses import ArmPose, JointPose
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.collision import CollisionChecker
 from lynxsim.tasks import Task
-from lynxsim.traj import ArmPose, JointPose, Trajectory, TrajectoryKind
+from lynxsim.traj import Trajectory, TrajectoryKind
 from lynxsim.traj.build import parse_kind
-from lynxsim.traj.waypoints import resolve_waypoints
 
 __all__ = ["DEFAULT_MARGIN_M", "PLANNING_CAP_M", "CheckerOracle", "plan_task", "task_trajectory"]
 
@@ -143,6 +143,8 @@ def plan_task(
         time_limit_s=time_limit_s,
         seed=seed,
         labels=[f"{a} -> {b}" for a, b in itertools.pairwise(names)],
+        bounds=ARM_BOUNDS,
+        limits=ARM_LIMITS,
         kind=TrajectoryKind.PLANNED,
         progress=progress,
         pose_names=names,
