@@ -15,7 +15,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.tasks import load_task
 from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 

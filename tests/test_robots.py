@@ -1,4 +1,4 @@
-"""The robot table: every row resolves, and it is the only place that names a robot."""
+"""The robot rows and records: every row resolves, and only they name a robot."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.robots import ROBOTS, motion_builder, robot, sim_adapter
+from lynxsim.registry import RobotInfo, info, names, register_info
+from lynxsim.robots import motion_builder, robot, sim_adapter
 from lynxsim.tasks import load_task
 
 TASKS = Path(__file__).resolve().parents[1] / "tasks"
@@ -26,9 +27,9 @@ def test_every_shipped_task_builds_and_prepares_through_its_row(path: Path) -> N
 
 
 def test_each_row_names_importable_parts() -> None:
-    for name, entry in ROBOTS.items():
-        assert entry.name == name
-        assert (PACKAGE / "models" / entry.model).is_file()
+    for name in names():
+        assert info(name).name == name
+        assert (PACKAGE / "models" / robot(name).model).is_file()
         assert callable(motion_builder(name))
         assert sim_adapter(name).default_camera
 
@@ -36,16 +37,31 @@ def test_each_row_names_importable_parts() -> None:
 def test_unknown_robot_lists_the_known_ones() -> None:
     with pytest.raises(InvalidInputError, match="expected one of: arm, rrr"):
         robot("scara")
+    with pytest.raises(InvalidInputError, match="unknown robot 'scara'; expected one of: arm, rrr"):
+        info("scara")
 
 
 def test_no_module_compares_a_robot_name() -> None:
     """A module that tests ``x == "arm"`` would need editing for every new robot."""
-    names = set(ROBOTS)
+    robot_names = set(names())
     offenders = []
     for source in PACKAGE.rglob("*.py"):
         for node in ast.walk(ast.parse(source.read_text())):
             if isinstance(node, ast.Compare):
                 for side in [node.left, *node.comparators]:
-                    if isinstance(side, ast.Constant) and side.value in names:
+                    if isinstance(side, ast.Constant) and side.value in robot_names:
                         offenders.append(f"{source.relative_to(PACKAGE)}:{node.lineno}")
     assert offenders == []
+
+
+def test_rows_are_validated_and_a_name_is_registered_once() -> None:
+    with pytest.raises(InvalidInputError, match="robot name must be lower-case letters"):
+        RobotInfo("Arm", "x", "tool", True, "m:a")
+    with pytest.raises(InvalidInputError, match="unknown pose schema 'joints'"):
+        RobotInfo("scara", "x", "joints", True, "m:a")  # type: ignore[arg-type]
+    with pytest.raises(InvalidInputError, match="entry must be 'module:attribute'"):
+        RobotInfo("scara", "x", "tool", True, "lynxsim.robots.arm")
+    register_info(info("arm"))  # the same row again: nothing changes
+    assert names() == ("arm", "rrr")
+    with pytest.raises(InvalidInputError, match="robot 'arm' is registered already"):
+        register_info(RobotInfo("arm", "another arm", "tool", True, "m:a"))

@@ -14,11 +14,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lynxsim.arm.fk import FRAME_NAMES, frame_origins
-from lynxsim.arm.task import build_trajectory
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, LynxsimError, TaskFileError
 from lynxsim.poses import ArmPose, JointPose
 from lynxsim.robots import motion_builder
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import (
     REPORT_CUBE,
     REPORT_CYLINDER,

@@ -109,10 +109,11 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
     """
     import mujoco
 
+    from lynxsim.registry import info, names
     from lynxsim.resources import model_path
-    from lynxsim.robots import ROBOTS, robot, sim_adapter
+    from lynxsim.robots import robot, sim_adapter
 
-    entry = robot(task.robot)
+    entry = info(task.robot)
     accepted = sim_adapter(entry.name).options
     task_is = f"{args.task} is a task of the {entry.title} (robot {entry.name!r})"
     for option in _RUN_OPTIONS:
@@ -120,13 +121,13 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
             continue
         owners = " or ".join(
             f"the {r.title} (robot {r.name!r})"
-            for r in ROBOTS.values()
+            for r in map(info, names())
             if option in sim_adapter(r.name).options
         )
         flag = "--" + option.replace("_", "-")
         raise InvalidInputError(f"{flag} applies only to tasks of {owners}; {task_is}")
     if args.camera is not None:
-        model = mujoco.MjModel.from_xml_path(str(model_path(entry.model)))
+        model = mujoco.MjModel.from_xml_path(str(model_path(robot(entry.name).model)))
         cameras = [model.camera(i).name for i in range(model.ncam)]
         if args.camera not in cameras:
             raise InvalidInputError(

@@ -12,8 +12,8 @@ import pytest
 
 from lynxsim.arm import tool_pose
 from lynxsim.arm.motion import ArmPose, generate
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, LimitViolationError, NonFiniteInputError
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, physics_grid, play_arm

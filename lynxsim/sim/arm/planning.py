@@ -20,8 +20,13 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ik
-from lynxsim.arm.motion import ARM_BOUNDS, ARM_LIMITS, arm_lipschitz, resolve_waypoints
-from lynxsim.arm.task import build_trajectory
+from lynxsim.arm.motion import (
+    ARM_BOUNDS,
+    ARM_LIMITS,
+    arm_lipschitz,
+    build_trajectory,
+    resolve_waypoints,
+)
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan import (
     PlannedMotion,
@@ -154,10 +159,16 @@ def plan_task(
 def task_trajectory(task: Task, kind: TrajectoryKind | str | None = None) -> Trajectory:
     """An arm task's trajectory of any type, ``planned`` included (seed 0, default planner).
 
-    The other types come from :func:`lynxsim.arm.task.build_trajectory` (pure);
+    The other types come from :func:`lynxsim.arm.motion.build_trajectory` (pure);
     ``planned`` needs the scene's collision checker, so it is built here.
     """
     chosen = task.trajectory if kind is None else parse_kind(kind)
     if chosen is TrajectoryKind.PLANNED:
         return plan_task(task).trajectory
-    return build_trajectory(task, chosen)
+    return build_trajectory(
+        task.poses,
+        chosen,
+        task.durations,
+        stretch=task.stretch,
+        pass_through=task.pass_through,
+    )

@@ -12,10 +12,10 @@ import pytest
 
 from lynxsim.arm import tool_pose
 from lynxsim.arm.motion import ArmPose, generate
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, OutOfReachError
 from lynxsim.plots.obstacles import inside_any
 from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.tasks import PlanarPose, Task, load_task
 from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind

@@ -11,9 +11,9 @@ import pytest
 from lynxsim.arm import LYNX_ARM, ik, tool_pose
 from lynxsim.arm.motion import ArmPose, LineSegment, cartesian_line
 from lynxsim.arm.motion.cartesian import _branch
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import LimitViolationError, OutOfReachError, PathError
 from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
