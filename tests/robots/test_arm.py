@@ -21,7 +21,7 @@ from lynxsim.tasks import PlanarPose, Task, load_task
 from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 from tests.helpers import assert_close
 
-TASKS = Path(__file__).resolve().parents[3] / "tasks"
+TASKS = Path(__file__).resolve().parents[2] / "tasks"
 JOINT_TOL_DEG = 0.01
 """Table 4 prints joints to 0.01 deg."""
 
