@@ -29,6 +29,7 @@ __all__ = [
     "check_bounds",
     "check_range",
     "check_waypoint_count",
+    "joint_array",
     "resolve_waypoints",
 ]
 
@@ -109,6 +110,32 @@ def check_range(q: FloatArray, name: str, bounds: JointBounds) -> None:
         )
 
 
+def joint_array(waypoints: object, n: int, accepted: str = "Waypoints") -> FloatArray:
+    """Joint waypoints given as an array: real, finite, shape (N, n), 2 to MAX_WAYPOINTS rows.
+
+    Args:
+        waypoints: The array (or nested sequences).
+        n: The number of joints.
+        accepted: What else the caller accepts, for the message of a wrong type.
+
+    Raises:
+        InvalidInputError: Not real numbers (its subclass kept), a wrong shape or count.
+        NonFiniteInputError: A value is NaN or infinite.
+    """
+    try:
+        arr = real_array(waypoints, "joint waypoints")
+    except InvalidInputError as exc:  # keeps its class (InvalidTypeError for a wrong type)
+        raise type(exc)(
+            f"waypoints must be {accepted} or joints of shape (N, {n}): {exc}"
+        ) from None
+    if arr.ndim != 2 or arr.shape[1] != n:
+        raise InvalidInputError(f"joint waypoints must have shape (N, {n}), got {arr.shape}")
+    check_waypoint_count(arr.shape[0])
+    if not np.isfinite(arr).all():
+        raise NonFiniteInputError("joint waypoints must be finite")
+    return arr
+
+
 def resolve_waypoints(waypoints: WaypointsLike, bounds: JointBounds) -> Waypoints:
     """Check joint waypoints against the joints' ranges.
 
@@ -136,17 +163,7 @@ def resolve_waypoints(waypoints: WaypointsLike, bounds: JointBounds) -> Waypoint
                 f"waypoints of {wp.n_joints} joints, but the bounds are for {n} joints"
             )
     else:
-        try:
-            arr = real_array(waypoints, "joint waypoints")
-        except InvalidInputError as exc:  # keeps its class (InvalidTypeError for a wrong type)
-            raise type(exc)(
-                f"waypoints must be Waypoints or joints of shape (N, {n}): {exc}"
-            ) from None
-        if arr.ndim != 2 or arr.shape[1] != n:
-            raise InvalidInputError(f"joint waypoints must have shape (N, {n}), got {arr.shape}")
-        check_waypoint_count(arr.shape[0])
-        if not np.isfinite(arr).all():
-            raise NonFiniteInputError("joint waypoints must be finite")
+        arr = joint_array(waypoints, n)
         wp = Waypoints(arr, tuple(f"P{i + 1}" for i in range(arr.shape[0])))
     for q, name in zip(wp.q, wp.names):
         check_range(q, name, bounds)

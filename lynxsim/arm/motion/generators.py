@@ -6,9 +6,18 @@ arm's joint ranges (:func:`~lynxsim.arm.motion.space.joint_bounds`) and, unless
 given others, its servo limits (:data:`~lynxsim.arm.motion.space.ARM_LIMITS`)::
 
     traj = quintic(poses, durations=1.0)
+
+Their arguments: ``waypoints`` (poses or joints, shape (N, 5) [rad]),
+``durations`` (segment durations [s], see :mod:`lynxsim.traj.timing`),
+``limits``, ``stretch`` (lengthen given durations too short for the limits) and
+``geometry`` (the arm description: its joint ranges and names); each returns
+the checked :class:`~lynxsim.traj.Trajectory` and raises what its generic
+generator raises, and UnreachablePoseError for a pose the IK cannot solve.
 """
 
 from __future__ import annotations
+
+from typing import Protocol
 
 from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
 from lynxsim.arm.motion.space import ARM_LIMITS, joint_bounds
@@ -21,9 +30,17 @@ from lynxsim.traj.polynomial import quintic as joint_quintic
 from lynxsim.traj.ruckig_profile import ruckig_trajectory as joint_ruckig
 from lynxsim.traj.timing import Durations
 from lynxsim.traj.trajectory import Trajectory
-from lynxsim.traj.waypoints import Waypoints
+from lynxsim.traj.waypoints import Waypoints, WaypointsLike
 
-__all__ = ["arm_joints", "cubic", "free_motion", "lspb", "quintic", "ruckig_trajectory"]
+__all__ = [
+    "ArmGenerator",
+    "arm_joints",
+    "cubic",
+    "free_motion",
+    "lspb",
+    "quintic",
+    "ruckig_trajectory",
+]
 
 
 def arm_joints(
@@ -34,72 +51,63 @@ def arm_joints(
     return resolve_waypoints(waypoints, geometry).joints, bounds
 
 
-def free_motion(
-    waypoints: ArmWaypointsLike,
-    durations: Durations = None,
-    *,
-    limits: JointLimits = ARM_LIMITS,
-    stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
-) -> Trajectory:
-    """The arm's free motion; see :func:`lynxsim.traj.free_motion`.
+class _JointGenerator(Protocol):
+    __name__: str
 
-    Args:
-        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.arm.motion.waypoints`.
-        durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
-        limits: Joint limits to respect.
-        stretch: Lengthen given durations that are too short for the limits.
-        geometry: The arm description (its joint ranges and names).
-
-    Returns:
-        The checked :class:`~lynxsim.traj.Trajectory`.
-
-    Raises:
-        LimitViolationError: Given durations break a limit (names joint, time, excess).
-        UnreachablePoseError: A pose has no IK solution (names the pose).
-        InvalidInputError: Malformed waypoints, durations or options.
-    """
-    joints, bounds = arm_joints(waypoints, geometry)
-    return joint_free_motion(joints, durations, bounds=bounds, limits=limits, stretch=stretch)
+    def __call__(
+        self,
+        waypoints: WaypointsLike,
+        durations: Durations = None,
+        *,
+        bounds: JointBounds,
+        limits: JointLimits,
+        stretch: bool = False,
+    ) -> Trajectory: ...
 
 
-def cubic(
-    waypoints: ArmWaypointsLike,
-    durations: Durations = None,
-    *,
-    limits: JointLimits = ARM_LIMITS,
-    stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
-) -> Trajectory:
-    """The arm's cubic trajectory: :func:`lynxsim.traj.cubic`; arguments as :func:`free_motion`."""
-    joints, bounds = arm_joints(waypoints, geometry)
-    return joint_cubic(joints, durations, bounds=bounds, limits=limits, stretch=stretch)
+class ArmGenerator(Protocol):
+    """A generator of the arm's trajectories (see the module docs for its arguments)."""
+
+    __name__: str
+
+    def __call__(
+        self,
+        waypoints: ArmWaypointsLike,
+        durations: Durations = None,
+        *,
+        limits: JointLimits = ARM_LIMITS,
+        stretch: bool = False,
+        geometry: ArmGeometry = LYNX_ARM,
+    ) -> Trajectory:
+        """The trajectory through ``waypoints``."""
+        ...
 
 
-def quintic(
-    waypoints: ArmWaypointsLike,
-    durations: Durations = None,
-    *,
-    limits: JointLimits = ARM_LIMITS,
-    stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
-) -> Trajectory:
-    """The arm's quintic: :func:`lynxsim.traj.quintic`; arguments as :func:`free_motion`."""
-    joints, bounds = arm_joints(waypoints, geometry)
-    return joint_quintic(joints, durations, bounds=bounds, limits=limits, stretch=stretch)
+def _for_the_arm(generate: _JointGenerator) -> ArmGenerator:
+    """``generate`` with the arm's waypoints, joint ranges and default limits."""
+
+    def generator(
+        waypoints: ArmWaypointsLike,
+        durations: Durations = None,
+        *,
+        limits: JointLimits = ARM_LIMITS,
+        stretch: bool = False,
+        geometry: ArmGeometry = LYNX_ARM,
+    ) -> Trajectory:
+        joints, bounds = arm_joints(waypoints, geometry)
+        return generate(joints, durations, bounds=bounds, limits=limits, stretch=stretch)
+
+    generator.__name__ = generator.__qualname__ = generate.__name__
+    generator.__doc__ = (
+        f"The arm's :func:`lynxsim.traj.{generate.__name__}` (arguments: the module docs)."
+    )
+    return generator
 
 
-def lspb(
-    waypoints: ArmWaypointsLike,
-    durations: Durations = None,
-    *,
-    limits: JointLimits = ARM_LIMITS,
-    stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
-) -> Trajectory:
-    """The arm's LSPB trajectory: :func:`lynxsim.traj.lspb`; arguments as :func:`free_motion`."""
-    joints, bounds = arm_joints(waypoints, geometry)
-    return joint_lspb(joints, durations, bounds=bounds, limits=limits, stretch=stretch)
+free_motion = _for_the_arm(joint_free_motion)
+cubic = _for_the_arm(joint_cubic)
+quintic = _for_the_arm(joint_quintic)
+lspb = _for_the_arm(joint_lspb)
 
 
 def ruckig_trajectory(
@@ -111,10 +119,9 @@ def ruckig_trajectory(
     pass_through: bool = False,
     geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
-    """The arm's Ruckig trajectory; see :func:`lynxsim.traj.ruckig_trajectory`.
+    """The arm's :func:`lynxsim.traj.ruckig_trajectory` (arguments: the module docs).
 
-    Arguments as :func:`free_motion`; ``pass_through`` passes intermediate
-    waypoints without stopping.
+    ``pass_through`` passes intermediate waypoints without stopping.
     """
     joints, bounds = arm_joints(waypoints, geometry)
     return joint_ruckig(

@@ -25,12 +25,11 @@ from lynxsim.arm.motion.space import joint_bounds
 from lynxsim.errors import (
     InvalidInputError,
     JointRangeError,
-    NonFiniteInputError,
     OutOfReachError,
 )
-from lynxsim.inputs import instance, real_array
+from lynxsim.inputs import instance
 from lynxsim.poses import ArmPose, JointPose
-from lynxsim.traj.waypoints import Waypoints, check_range, check_waypoint_count
+from lynxsim.traj.waypoints import Waypoints, check_range, check_waypoint_count, joint_array
 
 __all__ = ["ArmWaypoints", "ArmWaypointsLike", "resolve_waypoints", "tool_poses"]
 
@@ -143,17 +142,7 @@ def resolve_waypoints(
     ):
         items = [w for w in waypoints if isinstance(w, ArmPose | JointPose)]
     else:
-        try:
-            arr = real_array(waypoints, "joint waypoints")
-        except InvalidInputError as exc:  # keeps its class (InvalidTypeError for a wrong type)
-            raise type(exc)(
-                f"waypoints must be ArmPose/JointPose objects or joints of shape (N, 5): {exc}"
-            ) from None
-        if arr.ndim != 2 or arr.shape[1] != 5:
-            raise InvalidInputError(f"joint waypoints must have shape (N, 5), got {arr.shape}")
-        check_waypoint_count(arr.shape[0])
-        if not np.isfinite(arr).all():
-            raise NonFiniteInputError("joint waypoints must be finite")
+        arr = joint_array(waypoints, 5, "ArmPose/JointPose objects")
         items = [JointPose(tuple(row)) for row in arr]
     check_waypoint_count(len(items))
     qs: list[FloatArray] = []
