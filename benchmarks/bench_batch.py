@@ -28,7 +28,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 
 import mujoco
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.sim.arm.batch import play_arm_batch
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm

@@ -29,10 +29,10 @@ import numpy as np
 from tqdm import tqdm
 
 from lynxsim.arm import LYNX_ARM, ik, tool_pose
+from lynxsim.arm.motion import ARM_BOUNDS, ARM_LIMITS, arm_lipschitz
 from lynxsim.errors import LynxsimError
 from lynxsim.plan import (
     PlanningError,
-    arm_lipschitz,
     path_length,
     plan_segment,
     potential_field_segment,
@@ -136,7 +136,7 @@ def _run(args: tuple[int, int, tuple[str, ...]]) -> SceneResult:
     if rrt_path is not None:
         timed = time_paths(
             [rrt_path], [False], oracle, lipschitz=lipschitz, margin_m=DEFAULT_MARGIN_M,
-            kind=TrajectoryKind.PLANNED,
+            bounds=ARM_BOUNDS, limits=ARM_LIMITS, kind=TrajectoryKind.PLANNED,
         )  # fmt: skip
         report = play_arm(model, timed.trajectory, task=f"scene{index}").report
         clearance, collided = report.min_clearance_m, report.collided

@@ -26,7 +26,7 @@ import mujoco
 import numpy as np
 from mujoco import rollout
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.stepping.commands import physics_grid

@@ -28,7 +28,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from lynxsim.rrr.task import path_from_task
+from lynxsim.robots.rrr import path_from_task
 from lynxsim.sim.rrr.model import RRRIds, load_rrr_scene
 from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.stepping.commands import physics_grid

@@ -43,12 +43,13 @@ import mujoco
 import numpy as np
 
 from lynxsim.arm import LYNX_ARM
+from lynxsim.arm.motion import ArmPose, quintic
 from lynxsim.random_scenes import random_obstacles
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene, Sphere
 from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
 from lynxsim.sim.arm.playback import arm_binding, arm_checker, play_arm
 from lynxsim.sim.render import Quality, RenderSettings, SceneRenderer
-from lynxsim.traj import ArmPose, Trajectory, quintic
+from lynxsim.traj import Trajectory
 
 SEED = 12
 OBSTACLE_COUNTS = (0, 1, 3, 10)

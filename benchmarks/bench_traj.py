@@ -15,9 +15,9 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.tasks import load_task
-from lynxsim.traj import TrajectoryKind
+from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 
 TASK = Path(__file__).resolve().parents[1] / "tasks" / "pick_and_place.toml"
 RATE_HZ = 500.0
@@ -48,7 +48,7 @@ def main() -> int:
         f"{'per 1000':>10s} {'report grid':>12s}"
     )
     line_ms = float("inf")
-    for kind in TrajectoryKind:
+    for kind in WAYPOINT_KINDS:  # planned is searched with the scene (bench_plan.py)
         generate_s = best_of(lambda kind=kind: build_trajectory(task, kind), args.repeat, 5)
         traj = build_trajectory(task, kind)
         t = traj.times_at_rate(RATE_HZ)

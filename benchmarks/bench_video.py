@@ -37,6 +37,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")  # MuJoCo reads it once, when first im
 import mujoco
 import numpy as np
 
+from lynxsim.arm.motion import tool_poses
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.playback import play_arm
@@ -57,7 +58,7 @@ def bench(quality: Quality, rounds: int) -> None:
     log = play_arm(model, trajectory, task=task.name).log
     settings = RenderSettings(quality=quality)
     steps = frame_steps(log.time_s, settings.fps).tolist()
-    targets = np.array([p.position for p in trajectory.waypoints.poses])
+    targets = np.array([p.position for p in tool_poses(trajectory.waypoints)])
     trace = PathTrace.of(log.tool)
     data = mujoco.MjData(model)
     image = np.empty((settings.height, settings.width, 3), dtype=np.uint8)

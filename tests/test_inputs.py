@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import ik_one
+from lynxsim.arm.motion import generate
 from lynxsim.errors import InvalidTypeError
-from lynxsim.traj import generate
 
 
 @pytest.mark.parametrize("value", ["abc", None, {"x": 1}, [1.0, "a", 2.0], 1j, np.array([True])])

@@ -14,10 +14,11 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from lynxsim.arm.fk import FRAME_NAMES, frame_origins
-from lynxsim.arm.task import build_trajectory
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, LynxsimError, TaskFileError
+from lynxsim.poses import ArmPose, JointPose
 from lynxsim.robots import motion_builder
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import (
     REPORT_CUBE,
     REPORT_CYLINDER,
@@ -30,7 +31,7 @@ from lynxsim.scene import (
     Sphere,
 )
 from lynxsim.tasks import PlanarPose, Task, load_task
-from lynxsim.traj import ArmPose, JointPose, TrajectoryKind
+from lynxsim.traj import TrajectoryKind
 from tools.fuzz_tasks import toml_value
 
 TASKS = Path(__file__).resolve().parents[1] / "tasks"

@@ -34,27 +34,29 @@ from typing import Any, Literal
 
 import numpy as np
 
-from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
-from lynxsim.errors import LynxsimError
-from lynxsim.rrr.path import PlatformLimits, PlatformPath, platform_path
-from lynxsim.traj import (
+from lynxsim.arm.motion import (
     ArmPose,
-    JointLimits,
     JointPose,
-    PolynomialSegment,
-    Trajectory,
-    TrajectorySample,
     cartesian_line,
-    check_trajectory,
     cubic,
-    cubic_coefficients,
     free_motion,
     generate,
     lspb,
     quintic,
-    quintic_coefficients,
     resolve_waypoints,
     ruckig_trajectory,
+)
+from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
+from lynxsim.errors import LynxsimError
+from lynxsim.rrr.path import PlatformLimits, PlatformPath, platform_path
+from lynxsim.traj import (
+    JointLimits,
+    PolynomialSegment,
+    Trajectory,
+    TrajectorySample,
+    check_trajectory,
+    cubic_coefficients,
+    quintic_coefficients,
 )
 from lynxsim.traj.lspb import lspb_segment
 
@@ -66,6 +68,12 @@ Q = np.radians(
     ]
 )
 """Valid joint waypoints [rad]."""
+
+
+def arm_limits(velocity: Any, acceleration: Any, jerk: Any) -> JointLimits:
+    """Limits of the arm's five joints, a scalar field for every joint."""
+    return JointLimits.for_joints(5, velocity, acceleration, jerk)
+
 
 POSES = (ArmPose((0.25, 0.0, 0.2), 0.0), ArmPose((0.2, 0.1, 0.25), -0.3, 0.5, "B"))
 """Valid task poses (tool point [m], pitch, roll [rad])."""
@@ -262,7 +270,7 @@ def make_call(target: str, rng: np.random.Generator) -> Call:
         elif slot == "durations":
             kwargs["durations"] = odd(1.5)
         elif slot == "limits":
-            kwargs["limits"] = Call("JointLimits", JointLimits, (odd(3.0), odd(10.0), odd(100.0)))
+            kwargs["limits"] = Call("arm_limits", arm_limits, (odd(3.0), odd(10.0), odd(100.0)))
         elif slot == "stretch":
             kwargs["stretch"] = odd() if rng.random() < 0.5 else True
         elif slot == "geometry":
@@ -280,7 +288,7 @@ def make_call(target: str, rng: np.random.Generator) -> Call:
         value = odd(valid.get(target, 10))
         return Call(f"generate({kind!r}, ...).{target}", getattr(traj, target), (value,))
     if target == "JointLimits":
-        return Call(target, JointLimits, (odd(3.0), odd([1.0, 2.0, 3.0, 4.0, 5.0]), odd(9.0)))
+        return Call("arm_limits", arm_limits, (odd(3.0), odd([1.0, 2.0, 3.0, 4.0, 5.0]), odd(9.0)))
     if target == "ArmPose":
         args = [odd([0.25, 0.0, 0.2]), odd(0.1), odd(0.2), odd() if rng.random() < 0.2 else "P"]
         keep = int(rng.integers(4))  # most of them valid

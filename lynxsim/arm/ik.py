@@ -46,7 +46,7 @@ from lynxsim.errors import (
 )
 from lynxsim.inputs import real_array
 
-__all__ = ["IKResult", "IKStatus", "ik"]
+__all__ = ["IKResult", "IKStatus", "ik", "ik_candidates"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -213,50 +213,8 @@ def ik(
         p = np.where(finite[:, None], p, 0.0)
         phi = np.where(finite, phi, 0.0)
     q5 = np.mod(np.where(finite, q5, 0.0), 2 * np.pi)
-    x, y, z = p[:, 0], p[:, 1], p[:, 2]
-
-    # Side 0 folds q1 into (-pi/2, pi/2]; side 1 turns it by pi. On side 1 the
-    # reach changes sign and the pitch becomes pi - pitch, so the wrist point's
-    # in-plane coordinates are (-r_w, z_w): the same distance from the shoulder
-    # (one reach test for both sides) and base angle pi - A.
-    rho = np.hypot(x, y)
-    heading = np.arctan2(y, x)
-    heading[rho == 0.0] = 0.0
-    folded = np.abs(heading) > np.pi / 2
-    q1_side0 = np.where(folded, wrap_angle(heading + np.pi), heading)
-    q1_side1 = wrap_angle(q1_side0 + np.pi)
-    reach = np.where(folded, -rho, rho)
-
-    l2, l3, lt = geometry.upper_arm, geometry.forearm, geometry.tool_length
-    r_w = reach - lt * np.cos(phi)
-    z_w = z - geometry.shoulder_height - lt * np.sin(phi)
-    c3 = (r_w**2 + z_w**2 - l2**2 - l3**2) / (2 * l2 * l3)
-    in_reach = finite & (np.abs(c3) <= 1.0 + LIMIT_TOL)
-    np.clip(c3, -1.0, 1.0, out=c3)
-    s3 = np.sqrt(1.0 - c3**2)
-    gamma = np.arctan2(s3, c3)  # |q3|, [0, pi]
-    beta = np.arctan2(l3 * s3, l2 + l3 * c3)  # shoulder correction, >= 0
-    base = np.arctan2(z_w, r_w)  # side 0; side 1 is pi - base
-    # Slots (side, elbow): (0, q3<=0), (0, q3>=0), (1, q3<=0), (1, q3>=0).
-    # Joint-major layout (5 joints, 4 slots, n targets) keeps every row contiguous.
-    cand = np.empty((5, 4, n))
-    cand[0, 0:2] = q1_side0
-    cand[0, 2:4] = q1_side1
-    q2, q3, q4 = cand[1], cand[2], cand[3]
-    np.add(base, beta, out=q2[0])
-    np.subtract(base, beta, out=q2[1])
-    np.subtract(np.pi, q2[1], out=q2[2])
-    np.subtract(np.pi, q2[0], out=q2[3])
-    np.negative(gamma, out=q3[0])
-    q3[1] = gamma
-    q3[2] = q3[0]
-    q3[3] = gamma
-    q4[0:2] = phi
-    np.subtract(np.pi, phi, out=q4[2])
-    q4[3] = q4[2]
-    q4 -= q2
-    q4 -= q3
-    cand[1:4] = wrap_angle(cand[1:4])
+    cand, in_reach = ik_candidates(p, phi, geometry)
+    in_reach &= finite
     cand[4] = q5
 
     lo = (geometry.lower - LIMIT_TOL)[:, None, None]
@@ -298,5 +256,75 @@ def ik(
         violation=amount.reshape(batch),
         candidates=cand_view,
         valid=valid.T.reshape(batch + (4,)),
-        reach_m=(l2, l3),
+        reach_m=(geometry.upper_arm, geometry.forearm),
     )
+
+
+def ik_candidates(
+    position: FloatArray, pitch: FloatArray, geometry: ArmGeometry = LYNX_ARM
+) -> tuple[FloatArray, npt.NDArray[np.bool_]]:
+    """The closed form itself: the four geometric candidates of finite targets, unchecked.
+
+    :func:`ik` validates its inputs, then calls this; so does the straight tool
+    line (:mod:`lynxsim.arm.motion.cartesian`), which needs one slot's joints at
+    thousands of points it has checked already.
+
+    Args:
+        position: Finite tool points, shape (n, 3) [m].
+        pitch: Finite tool pitches, shape (n,) [rad].
+        geometry: The arm description.
+
+    Returns:
+        ``(candidates, in_reach)``: joints of the slots of the module table,
+        joint-major, shape (5, 4, n) [rad] (``q5`` row 0; not checked against
+        the joint ranges), and whether each wrist point is within the reach
+        (to :data:`~lynxsim.angles.LIMIT_TOL`), shape (n,).
+    """
+    n = position.shape[0]
+    phi = pitch
+    x, y, z = position[:, 0], position[:, 1], position[:, 2]
+
+    # Side 0 folds q1 into (-pi/2, pi/2]; side 1 turns it by pi. On side 1 the
+    # reach changes sign and the pitch becomes pi - pitch, so the wrist point's
+    # in-plane coordinates are (-r_w, z_w): the same distance from the shoulder
+    # (one reach test for both sides) and base angle pi - A.
+    rho = np.hypot(x, y)
+    heading = np.arctan2(y, x)
+    heading[rho == 0.0] = 0.0
+    folded = np.abs(heading) > np.pi / 2
+    q1_side0 = np.where(folded, wrap_angle(heading + np.pi), heading)
+    q1_side1 = wrap_angle(q1_side0 + np.pi)
+    reach = np.where(folded, -rho, rho)
+
+    l2, l3, lt = geometry.upper_arm, geometry.forearm, geometry.tool_length
+    r_w = reach - lt * np.cos(phi)
+    z_w = z - geometry.shoulder_height - lt * np.sin(phi)
+    c3 = (r_w**2 + z_w**2 - l2**2 - l3**2) / (2 * l2 * l3)
+    in_reach = np.abs(c3) <= 1.0 + LIMIT_TOL
+    np.clip(c3, -1.0, 1.0, out=c3)
+    s3 = np.sqrt(1.0 - c3**2)
+    gamma = np.arctan2(s3, c3)  # |q3|, [0, pi]
+    beta = np.arctan2(l3 * s3, l2 + l3 * c3)  # shoulder correction, >= 0
+    base = np.arctan2(z_w, r_w)  # side 0; side 1 is pi - base
+    # Slots (side, elbow): (0, q3<=0), (0, q3>=0), (1, q3<=0), (1, q3>=0).
+    # Joint-major layout (5 joints, 4 slots, n targets) keeps every row contiguous.
+    cand = np.empty((5, 4, n))
+    cand[0, 0:2] = q1_side0
+    cand[0, 2:4] = q1_side1
+    q2, q3, q4 = cand[1], cand[2], cand[3]
+    np.add(base, beta, out=q2[0])
+    np.subtract(base, beta, out=q2[1])
+    np.subtract(np.pi, q2[1], out=q2[2])
+    np.subtract(np.pi, q2[0], out=q2[3])
+    np.negative(gamma, out=q3[0])
+    q3[1] = gamma
+    q3[2] = q3[0]
+    q3[3] = gamma
+    q4[0:2] = phi
+    np.subtract(np.pi, phi, out=q4[2])
+    q4[3] = q4[2]
+    q4 -= q2
+    q4 -= q3
+    cand[1:4] = wrap_angle(cand[1:4])
+    cand[4] = 0.0
+    return cand, in_reach

@@ -4,7 +4,7 @@ The MJCF model (``lynxsim/models/lynx_arm/lynx_arm.xml``, one default class per
 servo) writes the derived actuator and joint values to three significant
 digits; ``tests/arm/test_servos.py`` loads it and checks every one against this
 table. The trajectory generators' default limits
-(:data:`lynxsim.traj.DEFAULT_LIMITS`) derive from the same table.
+(:data:`lynxsim.arm.motion.ARM_LIMITS`) derive from the same table.
 
 Datasheets (Hitec, at 6.0 V; 1 kgf·cm = 0.0980665 N·m):
 

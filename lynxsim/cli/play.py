@@ -108,10 +108,11 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
         InvalidInputError: A run option of another robot (``--mode``, ``--no-obstacle``) or a
             ``--camera`` the robot's model lacks; the message names the flag and the robot.
     """
+    from lynxsim.registry import info, names
     from lynxsim.resources import model_path
-    from lynxsim.robots import ROBOTS, robot, sim_adapter
+    from lynxsim.robots import robot, sim_adapter
 
-    entry = robot(task.robot)
+    entry = info(task.robot)
     accepted = sim_adapter(entry.name).options
     task_is = f"{args.task} is a task of the {entry.title} (robot {entry.name!r})"
     for option in _RUN_OPTIONS:
@@ -119,7 +120,7 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
             continue
         owners = " or ".join(
             f"the {r.title} (robot {r.name!r})"
-            for r in ROBOTS.values()
+            for r in map(info, names())
             if option in sim_adapter(r.name).options
         )
         flag = "--" + option.replace("_", "-")
@@ -127,7 +128,7 @@ def _check_flags(args: argparse.Namespace, task: Task) -> None:
     if args.camera is not None:
         from lynxsim.sim.render import model_cameras
 
-        cameras = model_cameras(model_path(entry.model))
+        cameras = model_cameras(model_path(robot(entry.name).model))
         if args.camera not in cameras:
             raise InvalidInputError(
                 f"--camera {args.camera!r}: the {entry.title} model has no such camera; "

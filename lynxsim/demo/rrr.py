@@ -24,9 +24,9 @@ from lynxsim.demo.jobs import Job, JobProgress, job_progress
 from lynxsim.fileio import atomic_path, file_stem
 from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
+from lynxsim.robots.rrr import path_from_task
 from lynxsim.rrr import mode_label
 from lynxsim.rrr.modes import HOME_MODE
-from lynxsim.rrr.task import path_from_task
 from lynxsim.rrr.workspace import workspace_maps
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings

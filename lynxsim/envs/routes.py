@@ -20,10 +20,11 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
+from lynxsim.arm.motion import arm_lipschitz
 from lynxsim.envs.base import LynxArmEnv
 from lynxsim.envs.control import TargetStatus, ToolSpaceController
 from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
-from lynxsim.plan import PlanningError, arm_lipschitz, plan_segment
+from lynxsim.plan import PlanningError, plan_segment
 from lynxsim.plan.subspace import JointSubspace
 from lynxsim.sim.arm.planning import DEFAULT_MARGIN_M, CheckerOracle
 

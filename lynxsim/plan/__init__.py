@@ -7,9 +7,9 @@ worlds), certifies straight edges clear with a Lipschitz bound
 shortens, and times the result with Ruckig into an ordinary
 :class:`~lynxsim.traj.Trajectory`, checked clear again (:func:`plan_through`)::
 
-    L = arm_lipschitz()
     motion = plan_through([q_pick, q_place], q_home, oracle, [False, True],
-                          LYNX_ARM.lower, LYNX_ARM.upper, lipschitz=L, seed=0)
+                          bounds.lower, bounds.upper, lipschitz=L, bounds=bounds,
+                          limits=limits, seed=0)
     q, qd, qdd, qddd = motion.trajectory.sample(t)
 """
 
@@ -24,7 +24,6 @@ from lynxsim.plan.errors import (
     TimingClearanceError,
     UnknownPlannerError,
 )
-from lynxsim.plan.lipschitz import HAND_EXTENT_M, arm_lipschitz, joint_radii
 from lynxsim.plan.ompl_planners import PLANNERS, PlannerName
 from lynxsim.plan.oracle import ClearanceOracle
 from lynxsim.plan.potential import potential_field_segment
@@ -34,7 +33,6 @@ from lynxsim.plan.shortcut import path_length, shorten_path
 from lynxsim.plan.timing import TimedMotion, TimedSegment, time_paths
 
 __all__ = [
-    "HAND_EXTENT_M",
     "PLANNERS",
     "ClearanceOracle",
     "EdgeCheck",
@@ -52,10 +50,8 @@ __all__ = [
     "TimedSegment",
     "TimingClearanceError",
     "UnknownPlannerError",
-    "arm_lipschitz",
     "check_edges",
     "check_path",
-    "joint_radii",
     "path_length",
     "plan_segment",
     "plan_through",

@@ -2,7 +2,7 @@
 
 A task is a list of segments (approach, carry, retreat, ...), each with its goal
 candidates and whether the payload is held. Each segment starts where the
-previous one ended; the arm stops at the end of every segment.
+previous one ended; the robot stops at the end of every segment.
 """
 
 from __future__ import annotations
@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan.ompl_planners import MAX_SEED, PlannerName
 from lynxsim.plan.oracle import ClearanceOracle
@@ -23,7 +22,7 @@ from lynxsim.plan.progress import PlanProgress, ProgressCallback
 from lynxsim.plan.segment import DEFAULT_SHORTCUTS, SegmentPlan, check_search, plan_problem
 from lynxsim.plan.timing import DEFAULT_MAX_REPAIRS, TimedSegment, time_paths
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.trajectory import Trajectory
 
 __all__ = ["PlannedMotion", "plan_through", "segment_seed"]
@@ -69,8 +68,8 @@ def plan_through(
     seed: int = 0,
     shortcuts: int = DEFAULT_SHORTCUTS,
     labels: Sequence[str] | None = None,
-    limits: JointLimits = DEFAULT_LIMITS,
-    geometry: ArmGeometry = LYNX_ARM,
+    bounds: JointBounds,
+    limits: JointLimits,
     kind: TrajectoryKind = TrajectoryKind.RUCKIG,
     max_repairs: int = DEFAULT_MAX_REPAIRS,
     progress: ProgressCallback | None = None,
@@ -84,21 +83,22 @@ def plan_through(
     :func:`~lynxsim.plan.timing.time_paths` (Ruckig, stopping at segment ends).
 
     Args:
-        goal_sets: Goal candidates of each segment, each (K_i, 5) [rad].
-        start: The arm's start, shape (5,) [rad].
+        goal_sets: Goal candidates of each segment, each (K_i, n) [rad].
+        start: The robot's start, shape (n,) [rad].
         oracle: The world.
         grasped_per_segment: Whether the payload is held on each segment.
-        lower: Lower joint bounds of the search, shape (5,) [rad].
-        upper: Upper joint bounds of the search, shape (5,) [rad].
-        lipschitz: ``L`` [m/rad] (:func:`~lynxsim.plan.lipschitz.arm_lipschitz`).
+        lower: Lower joint bounds of the search, shape (n,) [rad].
+        upper: Upper joint bounds of the search, shape (n,) [rad].
+        lipschitz: ``L`` [m/rad]: no point of the robot moves more than
+            ``L ||dq||_2`` (the arm's: :func:`lynxsim.arm.motion.arm_lipschitz`).
         margin_m: Clearance margin [m].
         planner: OMPL planner of every segment.
         time_limit_s: Search time limit per segment [s].
         seed: Seeds the run; same inputs and seed give the same trajectory.
         shortcuts: Shortcut attempts per segment.
         labels: Segment names for errors and progress (default "1", "2", ...).
-        limits: Joint limits of the timing.
-        geometry: The arm (joint ranges of the trajectory).
+        bounds: The joints (n) and the ranges of the timed trajectory.
+        limits: Joint limits of the timing (n joints).
         kind: Trajectory kind of the result.
         max_repairs: Timing repair rounds.
         progress: Called as each segment's planning, shortening and end begin,
@@ -164,8 +164,8 @@ def plan_through(
         oracle,
         lipschitz=problem.lipschitz,
         margin_m=problem.margin_m,
+        bounds=bounds,
         limits=limits,
-        geometry=geometry,
         kind=kind,
         labels=names,
         max_repairs=max_repairs,

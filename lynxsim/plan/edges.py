@@ -1,7 +1,7 @@
 """Collision-safe straight edges in joint space, certified by a Lipschitz bound.
 
 The rule. Let ``L`` bound how far any point of the robot moves per joint-space
-length (:func:`~lynxsim.plan.lipschitz.arm_lipschitz`), so the clearance ``c``
+length (:func:`~lynxsim.arm.motion.arm_lipschitz`), so the clearance ``c``
 changes by at most ``L |s - s'|`` between points at arc lengths ``s, s'`` of an
 edge [rad]. Between two checked points ``a, b`` at distance ``h`` apart, every
 point lies within ``h/2`` of one of them along the edge, and::

@@ -1,6 +1,6 @@
 """An artificial potential-field planner: a baseline that can get stuck.
 
-The arm descends ``U(q) = 1/2 ||q - g||^2 + 1/2 eta (1/c(q) - 1/c0)^2`` (the
+The robot descends ``U(q) = 1/2 ||q - g||^2 + 1/2 eta (1/c(q) - 1/c0)^2`` (the
 second term only where the clearance ``c < c0``), attracted to the nearest valid
 goal ``g`` in joint space and repelled by the oracle's clearance, whose gradient
 comes from central finite differences (2n extra points per step, one oracle

@@ -242,7 +242,7 @@ def plan_segment(
         lower: Lower joint bounds, shape (n,) [rad].
         upper: Upper joint bounds, shape (n,) [rad].
         lipschitz: ``L`` [m/rad]: no point of the robot moves more than
-            ``L ||dq||_2`` (for the arm: :func:`~lynxsim.plan.lipschitz.arm_lipschitz`).
+            ``L ||dq||_2`` (for the arm: :func:`~lynxsim.arm.motion.arm_lipschitz`).
         margin_m: Clearance every checked point keeps [m]; the whole path keeps
             half of it.
         planner: One of :data:`~lynxsim.plan.ompl_planners.PLANNERS`.

@@ -2,7 +2,7 @@
 
 Each planning segment's path is timed by
 :func:`~lynxsim.traj.ruckig_profile.ruckig_trajectory` through its vertices
-without stopping (``pass_through``); the arm stops at the segment's ends (where
+without stopping (``pass_through``); the robot stops at the segment's ends (where
 it grasps or releases). Ruckig's time-optimal motion leaves the straight edges
 near the vertices it passes (it cuts corners) and, between stops, follows no
 straight line, so the timed motion is checked again, densely.
@@ -14,7 +14,7 @@ spaced so that ``L d <= margin / 2``; a motion passes when every sample keeps
 clearance ``>= margin / 2``. Between two samples the clearance is then at least
 ``(c_a + c_b - L d) / 2 >= margin / 4 > 0`` (the bound of :mod:`lynxsim.plan.edges`).
 
-The repair. Where a sample falls short, the arm stops at both vertices of the
+The repair. Where a sample falls short, the robot stops at both vertices of the
 path edge it lies on (there Ruckig moves from rest to rest, every joint
 monotonic, inside the box the edge spans); where it already stops at both, the
 edge's midpoint (on the certified path) becomes a stop too, which shrinks that
@@ -31,16 +31,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan.errors import PlanningError, TimingClearanceError
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.ruckig_profile import ruckig_trajectory
 from lynxsim.traj.trajectory import Segment, Trajectory
-from lynxsim.traj.waypoints import JointPose, resolve_waypoints
+from lynxsim.traj.waypoints import Waypoints, check_bounds, resolve_waypoints
 
 __all__ = ["DEFAULT_MAX_REPAIRS", "SPEED_SLACK", "TimedMotion", "TimedSegment", "time_paths"]
 
@@ -58,7 +57,7 @@ class TimedSegment:
     Attributes:
         start_s: When the segment starts in the trajectory [s].
         end_s: When it ends [s].
-        stops: Vertices where the arm stops, ends included [-].
+        stops: Vertices where the robot stops, ends included [-].
         midpoints: Vertices added by repairs [-].
         repairs: Repair rounds it needed [-].
         samples: Samples checked against the world [-].
@@ -133,8 +132,8 @@ def _check_chunk(
 def _chunks(
     paths: list[FloatArray],
     stops: list[FloatArray],
+    bounds: JointBounds,
     limits: JointLimits,
-    geometry: ArmGeometry,
 ) -> list[_Chunk]:
     """Time every rest-to-rest stretch; each starts exactly where the previous one ends."""
     out: list[_Chunk] = []
@@ -147,7 +146,7 @@ def _chunks(
             q = np.array(path[a : b + 1])
             if here is not None:
                 q[0] = here
-            traj = ruckig_trajectory(q, pass_through=True, limits=limits, geometry=geometry)
+            traj = ruckig_trajectory(q, pass_through=True, bounds=bounds, limits=limits)
             here = traj.sample(np.array([traj.duration])).q[0]
             out.append(_Chunk(i, int(a), int(b), traj))
     return out
@@ -160,8 +159,8 @@ def time_paths(
     *,
     lipschitz: float,
     margin_m: float,
-    limits: JointLimits = DEFAULT_LIMITS,
-    geometry: ArmGeometry = LYNX_ARM,
+    bounds: JointBounds,
+    limits: JointLimits,
     kind: TrajectoryKind = TrajectoryKind.RUCKIG,
     labels: Sequence[str] | None = None,
     max_repairs: int = DEFAULT_MAX_REPAIRS,
@@ -170,14 +169,14 @@ def time_paths(
     """Time planned paths with Ruckig and check the timed motion clear (see the module).
 
     Args:
-        paths: One path per planning segment, each (M_i, 5) [rad], each starting
+        paths: One path per planning segment, each (M_i, n) [rad], each starting
             where the previous one ends, every edge certified clear.
         grasped: Whether the payload is held on each path.
         oracle: The world.
         lipschitz: ``L`` [m/rad].
         margin_m: The planning margin [m]; timed samples keep half of it.
-        limits: Joint velocity, acceleration and jerk limits.
-        geometry: The arm (joint ranges).
+        bounds: The joints (n) and their ranges (those of the trajectory).
+        limits: Joint velocity, acceleration and jerk limits (n joints).
         kind: The trajectory kind to label the result with.
         labels: Names of the segments for errors.
         max_repairs: Repair rounds before giving up.
@@ -192,7 +191,7 @@ def time_paths(
         TimingClearanceError: A timed sample keeps less than ``margin / 2`` after
             every repair (names the segment).
         PlanningError: No path moves at all.
-        InvalidInputError: Paths not of shape (M, 5), or lengths that disagree.
+        InvalidInputError: Paths not of shape (M, n), or lengths that disagree.
         LimitViolationError: The motion breaks a limit (a bug of the timing).
     """
     if len(grasped) != len(paths):
@@ -200,10 +199,12 @@ def time_paths(
     names = tuple(labels) if labels is not None else tuple(str(i + 1) for i in range(len(paths)))
     if len(names) != len(paths):
         raise InvalidInputError(f"{len(paths)} paths need {len(paths)} labels")
+    bounds = check_bounds(bounds)
+    n = bounds.n_joints
     work = [np.array(p, dtype=float) for p in paths]
     for i, p in enumerate(work):
-        if p.ndim != 2 or p.shape[1] != 5 or p.shape[0] < 1:
-            raise InvalidInputError(f"path {i + 1} must have shape (M, 5), got {p.shape}")
+        if p.ndim != 2 or p.shape[1] != n or p.shape[0] < 1:
+            raise InvalidInputError(f"path {i + 1} must have shape (M, {n}), got {p.shape}")
     if all(p.shape[0] < 2 for p in work):
         raise PlanningError("no segment moves: the start already is every segment's goal")
     stops = [np.zeros(p.shape[0], dtype=bool) for p in work]
@@ -214,7 +215,7 @@ def time_paths(
     speed = float(np.linalg.norm(limits.velocity)) * (1.0 + SPEED_SLACK)
     rounds = 0
     while True:
-        chunks = _chunks(work, stops, limits, geometry)
+        chunks = _chunks(work, stops, bounds, limits)
         verdicts = [
             _check_chunk(ch, oracle, bool(grasped[ch.path]), speed, lipschitz, margin_m)
             for ch in chunks
@@ -245,7 +246,7 @@ def time_paths(
                 stops[i] = np.insert(stops[i], np.array(insert) + 1, True)
                 midpoints[i] += len(insert)
     return _assemble(
-        work, stops, chunks, verdicts, midpoints, repairs, limits, geometry, kind, pose_names
+        work, stops, chunks, verdicts, midpoints, repairs, bounds, limits, kind, pose_names
     )
 
 
@@ -279,8 +280,8 @@ def _assemble(
     verdicts: list[_Verdict],
     midpoints: list[int],
     repairs: list[int],
+    bounds: JointBounds,
     limits: JointLimits,
-    geometry: ArmGeometry,
     kind: TrajectoryKind,
     pose_names: Sequence[str] | None = None,
 ) -> TimedMotion:
@@ -294,13 +295,11 @@ def _assemble(
     q_all = np.concatenate(q_parts)
     names = _vertex_names(paths, pose_names)
     waypoints = resolve_waypoints(
-        q_all
-        if names is None or len(names) != len(q_all)
-        else [JointPose(tuple(q.tolist()), name) for q, name in zip(q_all, names)],
-        geometry,
+        q_all if names is None or len(names) != len(q_all) else Waypoints(q_all, tuple(names)),
+        bounds,
     )
-    trajectory = Trajectory(TrajectoryKind(kind), tuple(segments), waypoints, limits)
-    check_trajectory(trajectory, geometry)
+    trajectory = Trajectory(TrajectoryKind(kind), tuple(segments), waypoints, bounds, limits)
+    check_trajectory(trajectory)
     report: list[TimedSegment] = []
     clock = 0.0
     for i, path in enumerate(paths):

@@ -14,8 +14,8 @@ from matplotlib.patches import Circle, Patch, Rectangle
 from lynxsim.errors import InvalidInputError
 from lynxsim.plots.obstacles import draw_obstacles_top
 from lynxsim.plots.style import new_figure, plain_text, save_figure
+from lynxsim.poses import ArmPose
 from lynxsim.scene import Obstacle, Table
-from lynxsim.traj.waypoints import ArmPose
 from lynxsim.verdicts import Verdict
 
 __all__ = ["VERDICT_COLOURS", "plot_obstacle_map"]

@@ -15,6 +15,7 @@ import numpy.typing as npt
 from matplotlib.axes import Axes
 
 from lynxsim.arm import LYNX_ARM, tool_pose
+from lynxsim.arm.motion import tool_poses
 from lynxsim.plots.obstacles import (
     draw_obstacles_3d,
     draw_obstacles_top,
@@ -169,7 +170,8 @@ def plot_tool_paths(
         ax2.plot(p[:, 0], p[:, 1], lw=1.4, color=line.get_color())
         ax2.plot(marks[:, 0], marks[:, 1], ".", ms=4, color=line.get_color())
     draw_obstacles_3d(ax3, obstacles)
-    targets = np.array([pose.position for pose in first.waypoints.poses]) * 1e3
+    poses = tool_poses(first.waypoints)
+    targets = np.array([pose.position for pose in poses]) * 1e3
     ax3.scatter(
         targets[:, 0],
         targets[:, 1],
@@ -179,7 +181,7 @@ def plot_tool_paths(
         facecolors="none",
         edgecolors="k",
     )
-    for pose, xyz in zip(first.waypoints.poses, targets):
+    for pose, xyz in zip(poses, targets):
         ax3.text(xyz[0], xyz[1], xyz[2] + 15.0, pose.name, fontsize=9)
         ax2.annotate(pose.name, xyz[:2], textcoords="offset points", xytext=(5, 5), fontsize=9)
     ax2.plot(targets[:, 0], targets[:, 1], "ko", mfc="none", ms=7)

@@ -1,4 +1,4 @@
-"""Platform paths of the 3-RRR robot in task space, timed, and the actuated angles along them.
+"""Platform paths of the 3-RRR robot in task space, timed.
 
 The 3-RRR robot is planned in task space, ``(x, y, alpha)`` in SI units, and
 converted to actuated angles by the inverse kinematics in one working mode at
@@ -15,32 +15,33 @@ the rest-to-rest quintic ``s(u) = 10 u^3 - 15 u^4 + 6 u^5`` of
   smooth closed curve), travelled with one quintic time law over the whole
   path (rest at its ends only).
 
-This module is pure numpy (it lives in :mod:`lynxsim.sim` beside the 3-RRR
-playback that uses it).
+The actuated angles along a path are :mod:`lynxsim.rrr.actuated`'s (its
+names are importable from here too). Pure numpy.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import wrap_angle
 from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES, MAX_SEGMENT_S, MIN_SEGMENT_S
-from lynxsim.errors import (
-    InvalidInputError,
-    NonFiniteInputError,
-    SegmentDurationError,
-    TrajectoryError,
-    UnreachablePlatformPoseError,
-)
+from lynxsim.errors import InvalidInputError, NonFiniteInputError, SegmentDurationError
 from lynxsim.inputs import finite_array, flag, instance, positive_number, real_array
-from lynxsim.rrr import RRR_ROBOT, RRRGeometry, RRRIKResult, ik, singularity_measures
-from lynxsim.rrr.geometry import as_pose_array
+from lynxsim.rrr.actuated import (
+    ActuatedPath,
+    PlatformPathError,
+    actuated_path,
+    actuated_window,
+    reached,
+    wrap_to_window,
+)
+from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry
+from lynxsim.rrr.spline import spline_second_derivatives
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
 from lynxsim.traj.timing import check_planned, given_durations
@@ -70,24 +71,6 @@ _QUINTIC_PEAK_ACC = 10.0 / math.sqrt(3.0)
 """Peak of |d2s/du2| of the rest-to-rest quintic."""
 _SAME_POSE_TOL = 1e-9
 """First and last pose closer than this [m, rad] make a closed (periodic) path."""
-
-
-class PlatformPathError(TrajectoryError, ValueError):
-    """A platform path the robot cannot follow in the chosen working mode.
-
-    Raised when the path crosses a parallel singularity (the platform would
-    leave its assembly mode) or needs an actuated angle outside the actuators'
-    range.
-
-    Attributes:
-        time_s: When along the path the problem starts [s].
-        pose: The platform pose there, (x, y, alpha) [m, m, rad].
-    """
-
-    def __init__(self, message: str, *, time_s: float, pose: tuple[float, float, float]) -> None:
-        super().__init__(message)
-        self.time_s = time_s
-        self.pose = pose
 
 
 @dataclass(frozen=True)
@@ -143,46 +126,6 @@ def _quintic(u: FloatArray) -> FloatArray:
 def _metric(geometry: RRRGeometry) -> FloatArray:
     """Weights turning (dx, dy, dalpha) into lengths [m]: alpha counts at the platform radius."""
     return np.array([1.0, 1.0, geometry.platform_radius])
-
-
-def _spline_second_derivatives(u: FloatArray, y: FloatArray, closed: bool) -> FloatArray:
-    """Second derivatives at the knots of a cubic spline through ``y`` (natural or periodic).
-
-    Args:
-        u: Knots, strictly increasing, shape (N,).
-        y: Values, shape (N, 3).
-        closed: Periodic conditions (``y[0] == y[-1]``) instead of natural ends.
-
-    Returns:
-        Shape (N, 3).
-    """
-    n = len(u)
-    h = np.diff(u)
-    slope = np.diff(y, axis=0) / h[:, None]
-    m = np.zeros_like(y)
-    if closed:
-        k = n - 1  # unknowns M_0 .. M_{n-2}; M_{n-1} = M_0
-        a = np.zeros((k, k))
-        rhs = np.empty((k, 3))
-        for i in range(k):
-            hp, hn = h[i - 1], h[i]  # h[-1] is the last interval: periodic wrap
-            a[i, (i - 1) % k] += hp
-            a[i, i] += 2.0 * (hp + hn)
-            a[i, (i + 1) % k] += hn
-            rhs[i] = 6.0 * (slope[i] - slope[i - 1])
-        m[:k] = np.linalg.solve(a, rhs)
-        m[k] = m[0]
-    elif n > 2:
-        k = n - 2  # interior unknowns; natural ends M_0 = M_{n-1} = 0
-        a = np.zeros((k, k))
-        for i in range(k):
-            a[i, i] = 2.0 * (h[i] + h[i + 1])
-            if i > 0:
-                a[i, i - 1] = h[i]
-            if i < k - 1:
-                a[i, i + 1] = h[i + 1]
-        m[1:-1] = np.linalg.solve(a, 6.0 * (slope[1:] - slope[:-1]))
-    return m
 
 
 @dataclass(frozen=True, eq=False)
@@ -360,23 +303,6 @@ def _check_waypoints(waypoints: object) -> FloatArray:
     return w
 
 
-def _reached(poses: FloatArray, where: Callable[[int], str], geometry: RRRGeometry) -> RRRIKResult:
-    """The IK of platform poses (N, 3) [m, m, rad], all reachable.
-
-    Raises:
-        UnreachablePlatformPoseError: At the first pose a leg cannot reach, its
-            message prefixed with ``where(index)``.
-    """
-    result = ik(poses, geometry)
-    if not result.ok.all():
-        i = int(np.argmin(result.ok))
-        try:
-            result.raise_for_status(i)
-        except UnreachablePlatformPoseError as exc:
-            raise UnreachablePlatformPoseError(f"{where(i)}: {exc}", legs=exc.legs) from None
-    return result
-
-
 def platform_path(
     waypoints: npt.ArrayLike,
     durations: float | Sequence[float] | None = None,
@@ -438,7 +364,7 @@ def platform_path(
         labels = tuple(names)
     if len(labels) != len(w):
         raise InvalidInputError(f"got {len(labels)} names for {len(w)} waypoints")
-    _reached(w, lambda i: f"waypoint {labels[i]!r}", geometry)
+    reached(w, lambda i: f"waypoint {labels[i]!r}", geometry)
     with np.errstate(over="ignore"):  # alpha beyond ±1e307: inf, refused below
         step = np.linalg.norm(np.diff(w, axis=0) * _metric(geometry), axis=1)
     if not np.isfinite(step).all():
@@ -453,7 +379,7 @@ def platform_path(
     curvature = np.zeros((0, 3))
     if through:
         knots = np.concatenate([[0.0], np.cumsum(step)])
-        curvature = _spline_second_derivatives(knots, w, closed)
+        curvature = spline_second_derivatives(knots, w, closed)
 
     given = given_durations(durations, n_seg, labels)
 
@@ -511,108 +437,3 @@ def platform_path(
     chosen = np.maximum(given, shortest_seg)
     check_planned(chosen, labels, "platform limits")
     return build(chosen)
-
-
-def actuated_window(geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
-    """Centre of each actuated angle's range: direction from ``B_i`` to ``C_b``, (3,) [rad].
-
-    Leg ``i``'s actuated angle is kept in ``[centre_i - pi, centre_i + pi]``
-    (the actuators' ``ctrlrange`` in ``lynxsim/models/rrr/rrr.xml``), so that no
-    command wraps.
-    """
-    d = np.asarray(geometry.base_centre) - geometry.base
-    out: FloatArray = np.arctan2(d[:, 1], d[:, 0])
-    return out
-
-
-def wrap_to_window(theta: npt.ArrayLike, geometry: RRRGeometry = RRR_ROBOT) -> FloatArray:
-    """Actuated angles moved by whole turns into their ranges, shape (..., 3) [rad]."""
-    centre = actuated_window(geometry)
-    out: FloatArray = centre + wrap_angle(np.asarray(theta, dtype=float) - centre)
-    return out
-
-
-class ActuatedPath(NamedTuple):
-    """Actuated angles along a sampled platform path in one working mode.
-
-    Attributes:
-        theta: Actuated angles, shape (T, 3) [rad], continuous in time, in the
-            actuators' ranges (:func:`actuated_window`).
-        min_abs_parallel: Smallest ``|parallel measure|`` along the path [-]
-            (0 at a parallel singularity; see :mod:`lynxsim.rrr.jacobian`).
-        min_serial: Smallest serial measure along the path [-] (0 where a leg
-            is fully stretched or folded).
-    """
-
-    theta: FloatArray
-    min_abs_parallel: float
-    min_serial: float
-
-
-def actuated_path(
-    poses: npt.ArrayLike,
-    mode: int,
-    *,
-    times: npt.ArrayLike | None = None,
-    geometry: RRRGeometry = RRR_ROBOT,
-) -> ActuatedPath:
-    """Inverse kinematics of every sample of a platform path in one working mode.
-
-    Args:
-        poses: Platform poses, shape (T, 3) [m, m, rad], densely sampled.
-        mode: Working mode 0..7.
-        times: Their times [s], (T,), for error messages (sample index if None).
-        geometry: The robot description.
-
-    Returns:
-        The :class:`ActuatedPath`.
-
-    Raises:
-        UnreachablePlatformPoseError: A sample is out of reach (names the legs).
-        PlatformPathError: The path crosses a parallel singularity, or an
-            actuated angle would leave its range.
-        InvalidInputError: Bad shape or mode.
-    """
-    p = as_pose_array(poses, "poses")
-    if p.ndim != 2 or len(p) == 0:
-        raise InvalidInputError(f"poses must have shape (T, 3), got {p.shape}")
-    if not (isinstance(mode, int | np.integer) and 0 <= int(mode) <= 7):
-        raise InvalidInputError(f"working mode must be an integer in 0..7, got {mode!r}")
-    t = np.arange(len(p), dtype=float) if times is None else np.asarray(times, dtype=float)
-    unit = "sample" if times is None else "t ="
-
-    def where(i: int) -> str:
-        return f"{unit} {t[i]:.3f}{'' if times is None else ' s'}"
-
-    result = _reached(p, lambda i: f"path leaves the workspace at {where(i)}", geometry)
-    theta = np.unwrap(result.theta[:, int(mode), :], axis=0)
-    theta += wrap_to_window(theta[0], geometry) - theta[0]
-    centre = actuated_window(geometry)
-    outside = np.abs(theta - centre) > math.pi
-    if outside.any():
-        i = int(np.argmax(outside.any(axis=1)))
-        leg = int(np.argmax(outside[i])) + 1
-        raise PlatformPathError(
-            f"leg {leg}'s actuated angle leaves its range "
-            f"[{math.degrees(centre[leg - 1] - math.pi):.0f}, "
-            f"{math.degrees(centre[leg - 1] + math.pi):.0f}] deg at {where(i)}",
-            time_s=float(t[i]),
-            pose=(float(p[i, 0]), float(p[i, 1]), float(p[i, 2])),
-        )
-    meas = singularity_measures(p, theta, geometry)
-    sign = np.sign(meas.parallel)
-    if (sign != sign[0]).any() or (sign == 0).any():
-        i = int(np.argmax((sign != sign[0]) | (sign == 0)))
-        x, y, a = p[i]
-        raise PlatformPathError(
-            f"path crosses a parallel singularity of working mode {mode} at {where(i)} "
-            f"(x {x * 1e3:.1f} mm, y {y * 1e3:.1f} mm, alpha {math.degrees(a):.1f} deg): "
-            "the platform would leave its assembly mode",
-            time_s=float(t[i]),
-            pose=(float(x), float(y), float(a)),
-        )
-    return ActuatedPath(
-        theta=theta,
-        min_abs_parallel=float(np.abs(meas.parallel).min()),
-        min_serial=float(meas.serial.min()),
-    )

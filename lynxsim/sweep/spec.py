@@ -54,9 +54,10 @@ import numpy.typing as npt
 
 from lynxsim.bounds import MAX_CELLS
 from lynxsim.errors import TaskFileError
-from lynxsim.robots import robot
+from lynxsim.registry import info
 from lynxsim.scene import TABLE, Box, Obstacle
-from lynxsim.tasks import Task, _Reader, load_task
+from lynxsim.tasks import Task, load_task
+from lynxsim.tasks.reader import FieldReader as _Reader
 from lynxsim.traj.kinds import WAYPOINT_KINDS, TrajectoryKind
 
 __all__ = [
@@ -316,7 +317,7 @@ def _tasks(r: _Reader, raw: object, folder: Path) -> tuple[tuple[Task, ...], tup
             raise r.fail(field, str(exc)) from None
         except OSError as exc:
             raise r.fail(field, f"cannot read {path}: {exc.strerror or exc}") from None
-        if not robot(task.robot).scene:  # obstacles are swept through the table scene
+        if not info(task.robot).scene:  # obstacles are swept through the table scene
             raise r.fail(
                 field,
                 f"{path} is a task of robot {task.robot!r}, which stands in no table scene; "

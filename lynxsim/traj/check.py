@@ -17,7 +17,6 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import LIMIT_TOL
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.errors import InvalidInputError, LimitViolationError
 from lynxsim.inputs import instance
 
@@ -68,16 +67,16 @@ class Extremes(NamedTuple):
 
     Attributes:
         value: ``max(+x)`` and ``max(-x)`` of derivative order 0..3 (position,
-            velocity, acceleration, jerk) per joint, shape (4, 2, 5)
+            velocity, acceleration, jerk) per joint, shape (4, 2, n)
             [rad/s^order].
-        tau: Local times where they occur, shape (4, 2, 5) [s].
+        tau: Local times where they occur, shape (4, 2, n) [s].
     """
 
     value: FloatArray
     tau: FloatArray
 
     def peak(self, order: int) -> FloatArray:
-        """Largest magnitude of derivative ``order`` per joint, shape (5,)."""
+        """Largest magnitude of derivative ``order`` per joint, shape (n,)."""
         return np.asarray(self.value[order].max(axis=0))
 
     def time_scaled(self, duration: float) -> Extremes:
@@ -97,15 +96,15 @@ def segment_extremes(
     Args:
         segment: The segment.
         tau: Its check grid, shape (n,) [s] (see :func:`check_grid`).
-        states: ``segment.evaluate(tau)``, shape (4, n, 5), all finite.
-        refine: Which extremes to refine, shape (4, 2, 5) as :attr:`Extremes.value`;
+        states: ``segment.evaluate(tau)``, shape (4, len(tau), n), all finite.
+        refine: Which extremes to refine, shape (4, 2, n) as :attr:`Extremes.value`;
             the others keep the grid's value. Default: all.
 
     Returns:
         The :class:`Extremes`, never below the grid's values.
     """
-    n = tau.size
-    f = np.stack([states, -states], axis=1).transpose(0, 1, 3, 2).reshape(-1, n)  # (40, n)
+    n, joints = tau.size, states.shape[2]
+    f = np.stack([states, -states], axis=1).transpose(0, 1, 3, 2).reshape(-1, n)  # (8 * joints, n)
     arg = f.argmax(axis=1)  # channel = (order, sign, joint)
     best = f[np.arange(f.shape[0]), arg]
     best_tau = tau[arg]
@@ -120,7 +119,7 @@ def segment_extremes(
     rows, idx = np.nonzero(np.isfinite(np.take_along_axis(score, top, axis=1)))
     chan = selected[rows]
     grid_index = top[rows, idx]
-    order, side, joint = np.unravel_index(chan, (4, 2, 5))
+    order, side, joint = np.unravel_index(chan, (4, 2, joints))
     sign = np.where(side == 0, 1.0, -1.0)
     a = tau[np.maximum(grid_index - 1, 0)]
     b = tau[np.minimum(grid_index + 1, n - 1)]
@@ -148,7 +147,7 @@ def segment_extremes(
     higher = first[found[first] > best[chan[first]]]
     best[chan[higher]] = found[higher]
     best_tau[chan[higher]] = mid[higher]
-    return Extremes(best.reshape(4, 2, 5), best_tau.reshape(4, 2, 5))
+    return Extremes(best.reshape(4, 2, joints), best_tau.reshape(4, 2, joints))
 
 
 def _where(traj: Trajectory, segment: int, tau: float) -> str:
@@ -159,7 +158,6 @@ def _where(traj: Trajectory, segment: int, tau: float) -> str:
 
 def check_trajectory(
     traj: Trajectory,
-    geometry: ArmGeometry = LYNX_ARM,
     *,
     hint: str = "",
     extremes: list[Extremes] | None = None,
@@ -171,8 +169,8 @@ def check_trajectory(
     quantity the largest violation is reported.
 
     Args:
-        traj: The trajectory; its ``limits`` are the bounds.
-        geometry: The arm description (joint ranges and names).
+        traj: The trajectory; its ``bounds`` (joint ranges and names) and
+            ``limits`` are what it is held to.
         hint: Advice appended to velocity, acceleration and jerk messages (e.g. how
             to lengthen segments).
         extremes: Every segment's :class:`Extremes`, all refined and finite, when
@@ -181,14 +179,14 @@ def check_trajectory(
     Raises:
         LimitViolationError: Names the joint, the time, the segment, the value,
             the bound and by how much it is broken.
-        InvalidInputError: ``traj`` is not a :class:`Trajectory`, ``geometry``
-            not an :class:`~lynxsim.arm.ArmGeometry`, ``hint`` not a string, or
-            ``extremes`` not one :class:`Extremes` per segment.
+        InvalidInputError: ``traj`` is not a :class:`Trajectory`, ``hint`` not a
+            string, or ``extremes`` not one :class:`Extremes` per segment.
     """
     from lynxsim.traj.trajectory import Trajectory  # not at the top: an import cycle (see there)
 
     traj = instance(traj, Trajectory, "traj")
-    geometry = instance(geometry, ArmGeometry, "geometry")
+    joints = traj.bounds
+    lower, upper = joints.lower_array, joints.upper_array
     hint = instance(hint, str, "hint")
     if extremes is not None and not (
         isinstance(extremes, list)
@@ -198,7 +196,7 @@ def check_trajectory(
         raise InvalidInputError(f"extremes must be a list of {len(traj.segments)} Extremes")
     orders = (0, *traj.kind.limited_orders)
     kind = traj.kind.value
-    bounds = _bounds(traj, geometry)
+    bounds = _bounds(traj)
 
     def fail(
         order: int, k: int, tau: float, j: int, message: str, value: float, side: int | None
@@ -209,9 +207,9 @@ def check_trajectory(
         elif order:
             bound = float(bounds[order, side, j])
         else:
-            bound = float(geometry.upper[j] if side == 0 else geometry.lower[j])
+            bound = float(upper[j] if side == 0 else lower[j])
         raise LimitViolationError(
-            f"{kind} trajectory: joint {j + 1} ({geometry.joint_names[j]}) {message} "
+            f"{kind} trajectory: joint {j + 1} ({joints.names[j]}) {message} "
             f"{_where(traj, k, tau)}{f'; {hint}' if hint and order else ''}",
             joint=j + 1,
             quantity=_QUANTITIES[order],
@@ -238,18 +236,18 @@ def check_trajectory(
                     float(states[orders[o], i, j]),
                     None,
                 )
-            grid = np.stack([states.max(axis=1), -states.min(axis=1)], axis=1)  # (4, 2, 5)
+            grid = np.stack([states.max(axis=1), -states.min(axis=1)], axis=1)  # (4, 2, n)
             near = grid >= bounds - _NEAR * np.maximum(np.abs(bounds), 1.0)
             extremes.append(segment_extremes(segment, tau, states, near))
-    value = np.array([e.value for e in extremes])  # (K, 4, 2, 5): segment, order, sign, joint
+    value = np.array([e.value for e in extremes])  # (K, 4, 2, n): segment, order, sign, joint
     where = np.array([e.tau for e in extremes])
     sign = np.array([1.0, -1.0])[:, None]
 
-    excess = value[:, 0] - bounds[0]  # (K, 2, 5) [rad]
+    excess = value[:, 0] - bounds[0]  # (K, 2, n) [rad]
     k, side, j = _argmax(excess)
     if excess[k, side, j] > LIMIT_TOL:
         q = float(sign[side, 0] * value[k, 0, side, j])
-        lo, hi = np.degrees(geometry.lower[j]), np.degrees(geometry.upper[j])
+        lo, hi = np.degrees(lower[j]), np.degrees(upper[j])
         fail(
             0,
             k,
@@ -263,7 +261,7 @@ def check_trajectory(
 
     for order in orders[1:]:
         with np.errstate(over="ignore"):  # denormal limits: inf, reported as broken
-            ratio = value[:, order] / bounds[order]  # (K, 2, 5)
+            ratio = value[:, order] / bounds[order]  # (K, 2, n)
         k, side, j = _argmax(ratio)
         if ratio[k, side, j] > 1.0 + LIMIT_RTOL:
             peak = float(sign[side, 0] * value[k, order, side, j])
@@ -281,10 +279,10 @@ def check_trajectory(
             )
 
 
-def _bounds(traj: Trajectory, geometry: ArmGeometry) -> FloatArray:
-    """Bounds on ``+x`` and ``-x`` of every derivative, shape (4, 2, 5) as :class:`Extremes`."""
-    bounds = np.empty((4, 2, 5))
-    bounds[0] = np.stack([geometry.upper, -geometry.lower])
+def _bounds(traj: Trajectory) -> FloatArray:
+    """Bounds on ``+x`` and ``-x`` of every derivative, shape (4, 2, n) as :class:`Extremes`."""
+    bounds = np.empty((4, 2, traj.n_joints))
+    bounds[0] = np.stack([traj.bounds.upper_array, -traj.bounds.lower_array])
     for order in (1, 2, 3):
         bounds[order] = traj.limits.of_order(order)
     return bounds

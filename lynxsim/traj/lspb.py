@@ -18,13 +18,12 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import finite_array, number_in_range, positive_number, real_number
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options
 from lynxsim.traj.timing import Durations, segment_durations
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
@@ -69,8 +68,8 @@ def lspb_segment(
     """One LSPB segment from rest to rest.
 
     Args:
-        q0: Start joints, shape (5,) [rad].
-        q1: End joints, shape (5,) [rad].
+        q0: Start joints, shape (n,) [rad].
+        q1: End joints, shape (n,) [rad], as many.
         duration: Segment duration, 0.001 to 3600 [s].
         accel: Path acceleration of the blends [1/s^2] (``s`` runs from 0 to 1),
             positive, ``inf`` for a segment without motion. If the duration is
@@ -86,8 +85,11 @@ def lspb_segment(
         NonFiniteInputError: A joint value is NaN or infinite.
     """
     q0, q1 = (finite_array(q, name) for q, name in ((q0, "q0"), (q1, "q1")))
-    if q0.shape != (5,) or q1.shape != (5,):
-        raise InvalidInputError(f"q0 and q1 must have shape (5,), got {q0.shape}, {q1.shape}")
+    if q0.ndim != 1 or q0.size < 1 or q1.shape != q0.shape:
+        raise InvalidInputError(
+            f"q0 and q1 must have one shape (n,), n >= 1, got {q0.shape}, {q1.shape}"
+        )
+    zero = np.zeros(q0.size)
     t = number_in_range(duration, "duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
     accel = real_number(accel, "accel")
     if accel != math.inf:
@@ -101,8 +103,8 @@ def lspb_segment(
     s_tb = 0.5 * a * tb * tb
     with np.errstate(over="ignore", invalid="ignore"):  # joints beyond 1e307 rad: refused below
         dq = q1 - q0
-        blend_in = np.stack([q0, np.zeros(5), 0.5 * a * dq])
-        cruise = np.stack([q0 + s_tb * dq, v * dq, np.zeros(5)])
+        blend_in = np.stack([q0, zero, 0.5 * a * dq])
+        cruise = np.stack([q0 + s_tb * dq, v * dq, zero])
         blend_out = np.stack([q1 - s_tb * dq, v * dq, -0.5 * a * dq])
     if t - 2.0 * tb > 0.0:
         return PolynomialSegment(
@@ -115,9 +117,9 @@ def lspb(
     waypoints: WaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    bounds: JointBounds,
+    limits: JointLimits,
     stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
     """Linear segments with parabolic blends, at rest at every waypoint.
 
@@ -125,22 +127,22 @@ def lspb(
     acceleration limits are checked.
 
     Args:
-        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        waypoints: Joints, shape (N, n) [rad], or :class:`~lynxsim.traj.waypoints.Waypoints`.
         durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
-        limits: Joint limits to respect.
+        bounds: The joints (n) and their ranges.
+        limits: Joint limits to respect (n joints).
         stretch: Lengthen given durations that are too short for the limits.
-        geometry: The arm description.
 
     Returns:
         The checked :class:`Trajectory`.
 
     Raises:
         LimitViolationError: Given durations break a limit (names joint, time, excess).
-        UnreachablePoseError: A pose has no IK solution (names the pose).
+        JointRangeError: A waypoint has a joint out of its range (names the waypoint).
         InvalidInputError: Malformed waypoints, durations or options.
     """
-    limits, stretch, geometry = check_options(limits, stretch, geometry)
-    wp = resolve_waypoints(waypoints, geometry)
+    bounds, limits, stretch = check_options(bounds, limits, stretch)
+    wp = resolve_waypoints(waypoints, bounds)
     delta = np.diff(wp.q, axis=0)
     v, a = _path_limits(delta, limits)
     times = segment_durations(durations, _shortest(v, a), wp.names, stretch=stretch)
@@ -148,6 +150,6 @@ def lspb(
         lspb_segment(q0, q1, float(t), float(acc))
         for q0, q1, t, acc in zip(wp.q[:-1], wp.q[1:], times, a)
     )
-    traj = Trajectory(TrajectoryKind.LSPB, segments, wp, limits)
-    check_trajectory(traj, geometry, hint=DURATION_HINT)
+    traj = Trajectory(TrajectoryKind.LSPB, segments, wp, bounds, limits)
+    check_trajectory(traj, hint=DURATION_HINT)
     return traj

@@ -21,16 +21,15 @@ from collections.abc import Callable
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.inputs import finite_array, flag, number_in_range
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits, check_limits
+from lynxsim.traj.limits import JointBounds, JointLimits, check_limits
 from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
-from lynxsim.traj.waypoints import WaypointsLike, check_geometry, resolve_waypoints
+from lynxsim.traj.waypoints import WaypointsLike, check_bounds, resolve_waypoints
 
 __all__ = [
     "cubic",
@@ -177,7 +176,7 @@ def quintic_scaling(u: FloatArray) -> FloatArray:
     Returns:
         ``s, ds/du, d2s/du2, d3s/du3``, shape (4, n); ``s`` clipped into [0, 1]
         (rounding would otherwise overshoot 1 by an ulp just before ``u = 1``,
-        enough to cross a boundary such as the arm's base-axis fold).
+        enough to cross a boundary such as a serial arm's base-axis fold).
     """
     u2 = u * u
     w = u - u2  # u (1 - u)
@@ -219,27 +218,32 @@ _COEFFICIENTS: dict[TrajectoryKind, Callable[[FloatArray, FloatArray, float], Fl
 
 
 def check_options(
-    limits: object, stretch: object, geometry: object
-) -> tuple[JointLimits, bool, ArmGeometry]:
+    bounds: object, limits: object, stretch: object
+) -> tuple[JointBounds, JointLimits, bool]:
     """The generators' keyword options, type-checked.
 
     Raises:
-        InvalidInputError: ``limits`` is not a :class:`JointLimits`, ``stretch``
-            not a bool, or ``geometry`` not an :class:`~lynxsim.arm.ArmGeometry`.
+        InvalidInputError: ``bounds`` is not a :class:`JointBounds`, ``limits``
+            not a :class:`JointLimits` of as many joints, or ``stretch`` not a bool.
     """
-    return check_limits(limits), flag(stretch, "stretch"), check_geometry(geometry)
+    bounds, limits = check_bounds(bounds), check_limits(limits)
+    if limits.n_joints != bounds.n_joints:
+        raise InvalidInputError(
+            f"limits of {limits.n_joints} joints for bounds of {bounds.n_joints} joints"
+        )
+    return bounds, limits, flag(stretch, "stretch")
 
 
 def _joint_polynomial(
     kind: TrajectoryKind,
     waypoints: WaypointsLike,
     durations: Durations,
+    bounds: JointBounds,
     limits: JointLimits,
     stretch: bool,
-    geometry: ArmGeometry,
 ) -> Trajectory:
-    limits, stretch, geometry = check_options(limits, stretch, geometry)
-    wp = resolve_waypoints(waypoints, geometry)
+    bounds, limits, stretch = check_options(bounds, limits, stretch)
+    wp = resolve_waypoints(waypoints, bounds)
     delta = np.abs(np.diff(wp.q, axis=0))
     peaks = np.stack([f * delta for f in _UNIT_PEAKS[kind]])
     shortest = scaled_shortest(peaks, limits, kind.limited_orders)
@@ -249,8 +253,8 @@ def _joint_polynomial(
         PolynomialSegment(np.array([0.0, t]), make(q0, q1, float(t))[None])
         for q0, q1, t in zip(wp.q[:-1], wp.q[1:], times)
     )
-    traj = Trajectory(kind, segments, wp, limits)
-    check_trajectory(traj, geometry, hint=DURATION_HINT)
+    traj = Trajectory(kind, segments, wp, bounds, limits)
+    check_trajectory(traj, hint=DURATION_HINT)
     return traj
 
 
@@ -258,9 +262,9 @@ def free_motion(
     waypoints: WaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    bounds: JointBounds,
+    limits: JointLimits,
     stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
     """Free motion: every joint at constant speed from waypoint to waypoint.
 
@@ -268,30 +272,30 @@ def free_motion(
     joint ranges and velocity limits are checked.
 
     Args:
-        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        waypoints: Joints, shape (N, n) [rad], or :class:`~lynxsim.traj.waypoints.Waypoints`.
         durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
-        limits: Joint limits to respect.
+        bounds: The joints (n) and their ranges.
+        limits: Joint limits to respect (n joints).
         stretch: Lengthen given durations that are too short for the limits.
-        geometry: The arm description.
 
     Returns:
         The checked :class:`Trajectory`.
 
     Raises:
         LimitViolationError: Given durations break a limit (names joint, time, excess).
-        UnreachablePoseError: A pose has no IK solution (names the pose).
-        InvalidInputError: Malformed waypoints or durations.
+        JointRangeError: A waypoint has a joint out of its range (names the waypoint).
+        InvalidInputError: Malformed waypoints, durations or options.
     """
-    return _joint_polynomial(TrajectoryKind.FREE, waypoints, durations, limits, stretch, geometry)
+    return _joint_polynomial(TrajectoryKind.FREE, waypoints, durations, bounds, limits, stretch)
 
 
 def cubic(
     waypoints: WaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    bounds: JointBounds,
+    limits: JointLimits,
     stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
     """Cubic polynomial per segment, at rest at every waypoint.
 
@@ -299,16 +303,16 @@ def cubic(
     acceleration limits are checked. Arguments, returns and errors as
     :func:`free_motion`.
     """
-    return _joint_polynomial(TrajectoryKind.CUBIC, waypoints, durations, limits, stretch, geometry)
+    return _joint_polynomial(TrajectoryKind.CUBIC, waypoints, durations, bounds, limits, stretch)
 
 
 def quintic(
     waypoints: WaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    bounds: JointBounds,
+    limits: JointLimits,
     stretch: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
     """Quintic polynomial per segment, zero velocity and acceleration at every waypoint.
 
@@ -316,6 +320,4 @@ def quintic(
     and jerk limits are checked. Arguments, returns and errors as
     :func:`free_motion`.
     """
-    return _joint_polynomial(
-        TrajectoryKind.QUINTIC, waypoints, durations, limits, stretch, geometry
-    )
+    return _joint_polynomial(TrajectoryKind.QUINTIC, waypoints, durations, bounds, limits, stretch)

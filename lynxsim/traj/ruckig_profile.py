@@ -29,13 +29,12 @@ import numpy.typing as npt
 import ruckig  # type: ignore[import-not-found]  # ships no type information
 
 from lynxsim.angles import LIMIT_TOL
-from lynxsim.arm import LYNX_ARM, ArmGeometry
 from lynxsim.bounds import MIN_SEGMENT_S
 from lynxsim.errors import SegmentDurationError, TrajectoryError
 from lynxsim.inputs import flag
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options
 from lynxsim.traj.timing import Durations, check_planned, given_durations, require_motion
 from lynxsim.traj.trajectory import PolynomialSegment, Trajectory
@@ -130,7 +129,7 @@ def profile_segment(trajectory: ruckig.Trajectory) -> PolynomialSegment:
 def _plan(
     q: FloatArray, via: FloatArray, limits: JointLimits, minimum: FloatArray | None
 ) -> list[ruckig.Trajectory]:
-    """Ruckig trajectories through ``q`` (N, 5) with velocities ``via`` (N, 5) [rad/s].
+    """Ruckig trajectories through ``q`` (N, n) with velocities ``via`` (N, n) [rad/s].
 
     Each segment starts where the previous one ends, at the velocity it was asked
     to end with (Ruckig meets it to ~1e-8 rad/s) and at rest in acceleration.
@@ -167,7 +166,7 @@ def _plan(
 
 
 def _via_velocities(wp: Waypoints, times: FloatArray, limits: JointLimits) -> FloatArray:
-    """Velocities at the waypoints for passing through, shape (N, 5) [rad/s]."""
+    """Velocities at the waypoints for passing through, shape (N, n) [rad/s]."""
     slope = np.diff(wp.q, axis=0) / times[:, None]  # mean speed per segment
     v_in, v_out = slope[:-1], slope[1:]
     same = np.sign(v_in) * np.sign(v_out) > 0
@@ -177,12 +176,12 @@ def _via_velocities(wp: Waypoints, times: FloatArray, limits: JointLimits) -> Fl
     return via
 
 
-def _overshoots(plans: list[ruckig.Trajectory], geometry: ArmGeometry) -> list[tuple[int, int]]:
+def _overshoots(plans: list[ruckig.Trajectory], bounds: JointBounds) -> list[tuple[int, int]]:
     """(segment, joint) pairs whose extrema leave the joint ranges."""
     found = []
     for k, plan in enumerate(plans):
         for j, ext in enumerate(plan.position_extrema):
-            if ext.min < geometry.lower[j] - LIMIT_TOL or ext.max > geometry.upper[j] + LIMIT_TOL:
+            if ext.min < bounds.lower[j] - LIMIT_TOL or ext.max > bounds.upper[j] + LIMIT_TOL:
                 found.append((k, j))
     return found
 
@@ -191,10 +190,10 @@ def ruckig_trajectory(
     waypoints: WaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    bounds: JointBounds,
+    limits: JointLimits,
     stretch: bool = False,
     pass_through: bool = False,
-    geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
     """Time-optimal jerk-limited motion through the waypoints (Ruckig).
 
@@ -202,14 +201,14 @@ def ruckig_trajectory(
     acceleration and jerk limits are checked.
 
     Args:
-        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        waypoints: Joints, shape (N, n) [rad], or :class:`~lynxsim.traj.waypoints.Waypoints`.
         durations: Segment durations [s]; ``None`` for time-optimal segments.
             Given durations are Ruckig's ``minimum_duration``.
-        limits: Joint limits (velocity, acceleration and jerk are fed to Ruckig).
+        bounds: The joints (n) and their ranges.
+        limits: Joint limits, n joints (velocity, acceleration and jerk are fed to Ruckig).
         stretch: Accept segments longer than given durations where the limits
             need more time, instead of raising.
         pass_through: Pass intermediate waypoints without stopping.
-        geometry: The arm description.
 
     Returns:
         The checked :class:`Trajectory`.
@@ -218,14 +217,14 @@ def ruckig_trajectory(
         SegmentDurationError: A given duration is shorter than the limits allow
             and ``stretch`` is false (names segment, joint and the time needed).
         LimitViolationError: A joint leaves its range.
-        UnreachablePoseError: A pose has no IK solution (names the pose).
+        JointRangeError: A waypoint has a joint out of its range (names the waypoint).
         InvalidInputError: Malformed waypoints, durations or options, or limits
             so low that a segment needs more than 3600 s.
         TrajectoryError: Ruckig cannot plan a segment (its reason in words).
     """
-    limits, stretch, geometry = check_options(limits, stretch, geometry)
+    bounds, limits, stretch = check_options(bounds, limits, stretch)
     pass_through = flag(pass_through, "pass_through")
-    wp = resolve_waypoints(waypoints, geometry)
+    wp = resolve_waypoints(waypoints, bounds)
     given = given_durations(durations, wp.q.shape[0] - 1, wp.names)
     via = np.zeros_like(wp.q)
     plans = _plan(wp.q, via, limits, given)
@@ -240,7 +239,7 @@ def ruckig_trajectory(
         times = given if given is not None else np.array([p.duration for p in plans])
         via = _via_velocities(wp, times, limits)
         plans = _plan(wp.q, via, limits, given)
-        while fix := [(k, j) for k, j in _overshoots(plans, geometry) if via[k : k + 2, j].any()]:
+        while fix := [(k, j) for k, j in _overshoots(plans, bounds) if via[k : k + 2, j].any()]:
             for k, j in fix:
                 via[k : k + 2, j] = 0.0
             plans = _plan(wp.q, via, limits, given)
@@ -252,7 +251,7 @@ def ruckig_trajectory(
                 raise SegmentDurationError(
                     f"ruckig trajectory: segment {k + 1} ({names[k]} -> {names[k + 1]}) needs "
                     f"{plan.duration:.4g} s within the limits, given {want:.4g} s; joint {j + 1} "
-                    f"({geometry.joint_names[j]}) needs the most time; {DURATION_HINT}",
+                    f"({bounds.names[j]}) needs the most time; {DURATION_HINT}",
                     segment=k,
                     joint=j + 1,
                     given=float(want),
@@ -260,6 +259,6 @@ def ruckig_trajectory(
                 )
     check_planned(np.array([p.duration for p in plans]), wp.names)
     segments = tuple(profile_segment(p) for p in plans)
-    traj = Trajectory(TrajectoryKind.RUCKIG, segments, wp, limits)
-    check_trajectory(traj, geometry)
+    traj = Trajectory(TrajectoryKind.RUCKIG, segments, wp, bounds, limits)
+    check_trajectory(traj)
     return traj

@@ -182,7 +182,7 @@ def scaled_shortest(peaks: FloatArray, limits: JointLimits, orders: Sequence[int
 
     Args:
         peaks: Peak magnitude of each joint's derivative of order 1, 2, 3 over
-            each segment when the segment lasts 1 s, shape (3, M, 5)
+            each segment when the segment lasts 1 s, shape (3, M, n)
             [rad/s, rad/s^2, rad/s^3].
         limits: The joint limits.
         orders: The derivative orders held to their limits.

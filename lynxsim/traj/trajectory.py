@@ -27,7 +27,7 @@ from lynxsim.bounds import (
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.inputs import instance, number_in_range, real_array
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import JointLimits
+from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.waypoints import Waypoints
 
 __all__ = ["PolynomialSegment", "Segment", "Trajectory", "TrajectorySample"]
@@ -39,13 +39,13 @@ TIME_TOL = 1e-9
 
 
 class TrajectorySample(NamedTuple):
-    """Joint states at a batch of times, batch shape ``B`` (the shape of ``t``).
+    """Joint states at a batch of times, batch shape ``B`` (the shape of ``t``), n joints.
 
     Attributes:
-        q: Joint angles, shape B + (5,) [rad].
-        qd: Joint velocities, shape B + (5,) [rad/s].
-        qdd: Joint accelerations, shape B + (5,) [rad/s^2].
-        qddd: Joint jerks, shape B + (5,) [rad/s^3]. Where a derivative jumps at
+        q: Joint angles, shape B + (n,) [rad].
+        qd: Joint velocities, shape B + (n,) [rad/s].
+        qdd: Joint accelerations, shape B + (n,) [rad/s^2].
+        qddd: Joint jerks, shape B + (n,) [rad/s^3]. Where a derivative jumps at
             a segment joint (see :attr:`TrajectoryKind.continuity`), the next
             derivative holds an impulse there that samples do not show.
     """
@@ -58,6 +58,11 @@ class TrajectorySample(NamedTuple):
 
 class Segment(Protocol):
     """One piece of a trajectory between two consecutive waypoints."""
+
+    @property
+    def n_joints(self) -> int:
+        """The number of joints n it moves."""
+        ...
 
     @property
     def duration(self) -> float:
@@ -76,7 +81,8 @@ class Segment(Protocol):
             tau: Local times in ``[0, duration]``, shape (n,) [s].
 
         Returns:
-            ``q, qd, qdd, qddd`` stacked, shape (4, n, 5) [rad, rad/s, rad/s^2, rad/s^3].
+            ``q, qd, qdd, qddd`` stacked, shape (4, len(tau), n) [rad, rad/s, rad/s^2,
+            rad/s^3].
         """
         ...
 
@@ -118,7 +124,7 @@ class PolynomialSegment:
     Attributes:
         breaks: Piece boundaries, shape (P + 1,) [s], from 0 to the duration,
             increasing.
-        coefficients: Shape (P, D + 1, 5): for piece ``i`` and joint ``j``,
+        coefficients: Shape (P, D + 1, n), n >= 1 joints: for piece ``i`` and joint ``j``,
             ``q_j(tau) = sum_k coefficients[i, k, j] * (tau - breaks[i])**k`` [rad/s^k].
 
     Raises:
@@ -144,9 +150,9 @@ class PolynomialSegment:
         if breaks[0] != 0.0 or (np.diff(breaks) <= 0).any():
             raise InvalidInputError(f"breaks must increase from 0, got {breaks.tolist()}")
         number_in_range(breaks[-1], "segment duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s")
-        if coefficients.ndim != 3 or coefficients.shape[0] != pieces or coefficients.shape[2] != 5:
+        if coefficients.ndim != 3 or coefficients.shape[0] != pieces or coefficients.shape[2] < 1:
             raise InvalidInputError(
-                f"coefficients must have shape ({pieces}, D + 1, 5), got {coefficients.shape}"
+                f"coefficients must have shape ({pieces}, D + 1, n), got {coefficients.shape}"
             )
         with np.errstate(over="ignore"):  # inf: refused by the magnitude check
             derivatives = tuple(_derivative_coefficients(coefficients, r) for r in range(4))
@@ -161,6 +167,11 @@ class PolynomialSegment:
         object.__setattr__(self, "_by_power", by_power)
 
     @property
+    def n_joints(self) -> int:
+        """The number of joints n."""
+        return int(self.coefficients.shape[2])
+
+    @property
     def duration(self) -> float:
         """Length of the segment [s]."""
         return float(self.breaks[-1])
@@ -171,8 +182,8 @@ class PolynomialSegment:
         return self.breaks[1:-1]
 
     def evaluate(self, tau: FloatArray) -> FloatArray:
-        """Joint states at local times ``tau``, shape (4, n, 5); see :class:`Segment`."""
-        out = np.empty((4, tau.size, 5))
+        """Joint states at local times ``tau``, shape (4, len(tau), n); see :class:`Segment`."""
+        out = np.empty((4, tau.size, self.coefficients.shape[2]))
         if self.breaks.size == 2:  # one piece: a Vandermonde matrix times the coefficients
             powers = np.vander(tau, self.coefficients.shape[1], increasing=True)
             for order, c in enumerate(self._derivatives):
@@ -191,18 +202,25 @@ class PolynomialSegment:
 
 @dataclass(frozen=True)
 class Trajectory:
-    """Joint motion through waypoints, sampled by time.
+    """Joint motion through waypoints, sampled by time, n joints.
 
     Attributes:
         kind: The generator that made it.
         segments: One segment per pair of consecutive waypoints.
-        waypoints: Joints and tool poses of the waypoints (the task's targets).
+        waypoints: Joints and names of the waypoints (the task's targets).
+        bounds: The joints and the ranges the trajectory was checked against.
         limits: The joint limits the trajectory was checked against.
+
+    Raises:
+        InvalidInputError: An unknown kind, fields of the wrong types, a segment
+            count that does not match the waypoints, a segment duration out of
+            range, or parts that disagree on the number of joints.
     """
 
     kind: TrajectoryKind
     segments: tuple[Segment, ...]
     waypoints: Waypoints
+    bounds: JointBounds
     limits: JointLimits
     _times: FloatArray = field(init=False, repr=False, compare=False)
 
@@ -212,8 +230,15 @@ class Trajectory:
         except ValueError:
             raise InvalidInputError(f"unknown trajectory kind {self.kind!r}") from None
         instance(self.waypoints, Waypoints, "waypoints")
+        bounds = instance(self.bounds, JointBounds, "bounds")
         instance(self.limits, JointLimits, "limits")
         instance(self.segments, tuple, "segments")
+        n = bounds.n_joints
+        if self.limits.n_joints != n or self.waypoints.n_joints != n:
+            raise InvalidInputError(
+                f"bounds of {n} joints, limits of {self.limits.n_joints} and waypoints of "
+                f"{self.waypoints.n_joints}: they must agree"
+            )
         for k, segment in enumerate(self.segments):
             duration = getattr(segment, "duration", None)
             if not callable(getattr(segment, "evaluate", None)) or duration is None:
@@ -221,6 +246,11 @@ class Trajectory:
             number_in_range(
                 duration, f"segment {k + 1} duration", MIN_SEGMENT_S, MAX_SEGMENT_S, "s"
             )
+            if getattr(segment, "n_joints", None) != n:
+                raise InvalidInputError(
+                    f"segment {k + 1} moves {getattr(segment, 'n_joints', None)} joints, "
+                    f"the trajectory {n}"
+                )
         if len(self.segments) != len(self.waypoints.q) - 1:
             raise InvalidInputError(
                 f"{len(self.waypoints.q)} waypoints need {len(self.waypoints.q) - 1} segments, "
@@ -229,6 +259,11 @@ class Trajectory:
         times = np.concatenate([[0.0], np.cumsum([s.duration for s in self.segments])])
         times.setflags(write=False)
         object.__setattr__(self, "_times", times)
+
+    @property
+    def n_joints(self) -> int:
+        """The number of joints n."""
+        return self.bounds.n_joints
 
     @property
     def duration(self) -> float:
@@ -253,7 +288,7 @@ class Trajectory:
                 (up to a relative rounding slack of 1e-9), in any order.
 
         Returns:
-            The :class:`TrajectorySample`, arrays of shape B + (5,).
+            The :class:`TrajectorySample`, arrays of shape B + (n,).
 
         Raises:
             NonFiniteInputError: A time is NaN or infinite.
@@ -283,7 +318,8 @@ class Trajectory:
         bounds = np.searchsorted(ts, self._times[1:-1], side="left")
         lo = np.concatenate([[0], bounds])
         hi = np.concatenate([bounds, [ts.size]])
-        out = np.empty((4, ts.size, 5))
+        n = self.n_joints
+        out = np.empty((4, ts.size, n))
         for k, segment in enumerate(self.segments):
             if hi[k] > lo[k]:
                 out[:, lo[k] : hi[k]] = segment.evaluate(ts[lo[k] : hi[k]] - self._times[k])
@@ -291,7 +327,7 @@ class Trajectory:
             unsorted = np.empty_like(out)
             unsorted[:, order] = out
             out = unsorted
-        shape = t_arr.shape + (5,)
+        shape = t_arr.shape + (n,)
         return TrajectorySample(*(out[i].reshape(shape) for i in range(4)))
 
     def times_at_rate(self, rate_hz: float) -> FloatArray:

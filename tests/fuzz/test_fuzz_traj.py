@@ -19,17 +19,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import array_shapes, arrays
 
+from lynxsim.arm.motion import ArmPose, JointPose, generate, resolve_waypoints
 from lynxsim.rrr.path import PlatformLimits, platform_path
-from lynxsim.traj import (
-    ArmPose,
-    JointLimits,
-    JointPose,
-    PolynomialSegment,
-    cubic_coefficients,
-    generate,
-    quintic_coefficients,
-    resolve_waypoints,
-)
+from lynxsim.traj import PolynomialSegment, cubic_coefficients, quintic_coefficients
 
 TOOL = Path(__file__).resolve().parents[2] / "tools" / "fuzz_traj.py"
 
@@ -98,7 +90,7 @@ def test_generators_return_a_valid_trajectory_or_raise_a_typed_error(kind, slot,
     elif slot == "waypoints":
         args[1] = value
     elif slot == "limits":
-        kwargs["limits"] = fuzz.Call("JointLimits", JointLimits, (value, 10.0, 100.0))
+        kwargs["limits"] = fuzz.Call("arm_limits", fuzz.arm_limits, (value, 10.0, 100.0))
     else:
         kwargs[slot] = value
     assert_contract(fuzz.Call("generate", generate, tuple(args), kwargs))
@@ -125,7 +117,7 @@ def test_value_types_validate_their_fields(which, value, position):
     if which == "JointLimits":
         fields: list[Any] = [3.0, 10.0, 100.0]
         fields[position % 3] = value
-        call = fuzz.Call(which, JointLimits, tuple(fields))
+        call = fuzz.Call("arm_limits", fuzz.arm_limits, tuple(fields))
     elif which == "ArmPose":
         fields = [(0.25, 0.0, 0.2), 0.1, 0.2, "P"]
         fields[position] = value

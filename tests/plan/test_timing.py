@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from lynxsim.arm import LYNX_ARM
+from lynxsim.arm.motion import ARM_BOUNDS, ARM_LIMITS
 from lynxsim.plan import PlanProgress, plan_through
-from lynxsim.traj import DEFAULT_LIMITS, TrajectoryKind
+from lynxsim.traj import JointBounds, JointLimits, TrajectoryKind
 from lynxsim.traj.check import LIMIT_RTOL
-from tests.plan.worlds import LIPSCHITZ, MARGIN_M, Spheres
+from tests.plan.worlds import LIPSCHITZ, LOWER_2D, MARGIN_M, UPPER_2D, WALL, Spheres
 
-LOWER, UPPER = LYNX_ARM.lower, LYNX_ARM.upper
+LOWER, UPPER = ARM_BOUNDS.lower_array, ARM_BOUNDS.upper_array
 MIDDLE = 0.5 * (LOWER + UPPER)
 BALL = Spheres([MIDDLE], [0.5])
 """A 5-D ball in the middle of the arm's joint box; the first segment must go around it."""
@@ -39,6 +39,8 @@ def motion():
         margin_m=MARGIN_M,
         seed=3,
         labels=["carry", "lift"],
+        bounds=ARM_BOUNDS,
+        limits=ARM_LIMITS,
         progress=reports.append,
     )
     return result, reports
@@ -75,7 +77,7 @@ def test_the_motion_keeps_the_joint_limits(motion):
     t = np.arange(0.0, traj.duration, DENSE_DT_S)
     s = traj.sample(t)
     for order, values in ((1, s.qd), (2, s.qdd), (3, s.qddd)):
-        limit = DEFAULT_LIMITS.of_order(order) * (1.0 + LIMIT_RTOL)
+        limit = ARM_LIMITS.of_order(order) * (1.0 + LIMIT_RTOL)
         assert (np.abs(values) <= limit).all()
     assert (s.q >= LOWER).all()
     assert (s.q <= UPPER).all()
@@ -109,9 +111,41 @@ def test_the_same_seed_gives_the_same_trajectory():
             lipschitz=LIPSCHITZ,
             margin_m=MARGIN_M,
             seed=11,
+            bounds=ARM_BOUNDS,
+            limits=ARM_LIMITS,
         ).trajectory
 
     a, b = run(), run()
     t = np.linspace(0.0, a.duration, 101)
     assert a.duration == b.duration
     assert a.sample(t).q.tobytes() == b.sample(t).q.tobytes()
+
+
+def test_a_robot_of_two_joints_is_planned_and_timed_with_its_own_bounds_and_limits():
+    """The planner knows no robot: a 2-joint world, bounds and limits given as arguments."""
+    bounds = JointBounds(("x", "y"), tuple(LOWER_2D), tuple(UPPER_2D))
+    limits = JointLimits.for_joints(2, 1.0, 4.0, 40.0)
+    result = plan_through(
+        [np.array([[0.5, 0.2]])],
+        np.array([-0.5, 0.0]),
+        WALL,
+        [False],
+        LOWER_2D,
+        UPPER_2D,
+        lipschitz=LIPSCHITZ,
+        margin_m=MARGIN_M,
+        seed=2,
+        bounds=bounds,
+        limits=limits,
+        pose_names=["start", "goal"],
+    )
+    traj = result.trajectory
+    assert traj.n_joints == 2
+    assert traj.bounds is bounds
+    assert traj.waypoints.names[0] == "start"
+    assert traj.waypoints.names[-1] == "goal"
+    t = np.arange(0.0, traj.duration, 1e-3)
+    s = traj.sample(t)
+    assert WALL.clearance(s.q, grasped=False).min() >= 0.25 * MARGIN_M
+    assert (np.abs(s.qd) <= 1.0 * (1.0 + LIMIT_RTOL)).all()
+    np.testing.assert_allclose(s.q[0], [-0.5, 0.0], atol=1e-12)

@@ -16,6 +16,7 @@ from lynxsim.errors import (
     SegmentDurationError,
     UnreachablePlatformPoseError,
 )
+from lynxsim.robots.rrr import path_from_task
 from lynxsim.rrr import RRR_ROBOT, ik
 from lynxsim.rrr.path import (
     DEFAULT_PLATFORM_LIMITS,
@@ -25,7 +26,6 @@ from lynxsim.rrr.path import (
     actuated_window,
     platform_path,
 )
-from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.rrr.model import HOME_POSE
 from lynxsim.tasks import load_task
 from tests.helpers import assert_close

@@ -13,8 +13,8 @@ import pytest
 
 from lynxsim.demo.rrr import FIGURE20_FILE, run_rrr_demo
 from lynxsim.errors import InvalidInputError
+from lynxsim.robots.rrr import path_from_task
 from lynxsim.rrr.path import platform_path
-from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.render import Quality, RenderSettings
 from lynxsim.sim.rrr.model import HOME_POSE, load_rrr_scene
 from lynxsim.sim.rrr.playback import RRRMetrics, play_rrr

@@ -17,9 +17,9 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import ik_one
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE, TABLE, Box, Cylinder, Scene, Sphere
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker, play_arm

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import LYNX_ARM
-from lynxsim.plan import StartInCollisionError, arm_lipschitz, joint_radii
+from lynxsim.arm.motion import arm_lipschitz, joint_radii
+from lynxsim.plan import StartInCollisionError
 from lynxsim.scene import Cylinder
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
 from lynxsim.sim.arm.planning import (

@@ -11,8 +11,9 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import tool_pose
-from lynxsim.arm.task import build_trajectory
+from lynxsim.arm.motion import ArmPose, generate
 from lynxsim.errors import InvalidInputError, LimitViolationError, NonFiniteInputError
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import REPORT_CYLINDER, REPORT_SCENE
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm
@@ -21,7 +22,7 @@ from lynxsim.sim.collision import CLEARANCE_CAP_M, classify_contacts
 from lynxsim.sim.stepping.commands import physics_grid
 from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.tasks import load_task
-from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
+from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 
 ROOT = Path(__file__).resolve().parents[2]
 PICK_AND_PLACE = ROOT / "tasks" / "pick_and_place.toml"

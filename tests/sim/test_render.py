@@ -10,6 +10,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import ArmPose, generate
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.arm.model import VISUAL_GROUP, load_arm_scene
 from lynxsim.sim.arm.task import run_arm_trajectory
@@ -23,7 +24,6 @@ from lynxsim.sim.render import (
     simplify_polyline,
 )
 from lynxsim.sim.video import decoded_frames, mp4_writer
-from lynxsim.traj import ArmPose, generate
 
 FAST = RenderSettings(quality=Quality.FAST)
 CHANGED_PX = 30

@@ -12,6 +12,14 @@ import math
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import (
+    ArmPose,
+    JointPose,
+    free_motion,
+    generate,
+    quintic,
+    resolve_waypoints,
+)
 from lynxsim.bounds import MAX_SAMPLES, MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import (
     InvalidInputError,
@@ -22,18 +30,12 @@ from lynxsim.errors import (
 )
 from lynxsim.traj import (
     WAYPOINT_KINDS,
-    ArmPose,
     JointLimits,
-    JointPose,
     PolynomialSegment,
     TrajectoryKind,
     check_trajectory,
     cubic_coefficients,
-    free_motion,
-    generate,
-    quintic,
     quintic_coefficients,
-    resolve_waypoints,
 )
 from lynxsim.traj.ruckig_profile import _calculate
 from tests.helpers import assert_close
@@ -82,7 +84,7 @@ def test_shortest_durations_of_tiny_motions_are_one_millisecond(kind):
 @pytest.mark.parametrize("kind", KINDS, ids=lambda k: k.value)
 @pytest.mark.parametrize("limit", [5e-324, 1e-300, 3e-4], ids=str)
 def test_limits_too_low_for_an_hour_raise_clearly(kind, limit):
-    limits = JointLimits(limit, limit, limit)
+    limits = JointLimits.for_joints(5, limit, limit, limit)
     if kind is TrajectoryKind.RUCKIG and limit < 1e-100:
         with pytest.raises(TrajectoryError, match=r"Ruckig cannot plan segment 1: .*beyond"):
             generate(kind, Q, limits=limits)
@@ -95,7 +97,7 @@ def test_limits_too_low_for_an_hour_raise_clearly(kind, limit):
 
 @pytest.mark.parametrize("kind", [k for k in KINDS if k is not TrajectoryKind.RUCKIG])
 def test_huge_limits_give_the_shortest_segment(kind):
-    traj = generate(kind, Q, limits=JointLimits(1e300, 1e300, 1e300))
+    traj = generate(kind, Q, limits=JointLimits.for_joints(5, 1e300, 1e300, 1e300))
     assert_close(traj.segment_durations, [MIN_SEGMENT_S], atol=1e-15)
 
 
@@ -104,7 +106,7 @@ def test_ruckig_failures_are_typed_with_the_reason_in_words():
     with pytest.raises(
         TrajectoryError, match=r"longer than Ruckig can compute \(7600 s\) \(Ruckig result -101\)"
     ) as err:
-        generate("ruckig", Q, limits=JointLimits(1e-4, 1.0, 1.0))
+        generate("ruckig", Q, limits=JointLimits.for_joints(5, 1e-4, 1.0, 1.0))
     assert "is not a valid Result" not in str(err.value)
 
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import ARM_LIMITS, lspb
 from lynxsim.errors import LimitViolationError
-from lynxsim.traj import DEFAULT_LIMITS, lspb
 from tests.helpers import assert_close
 
 RATE_TOL = 1e-9
@@ -27,7 +27,7 @@ def test_long_move_is_a_trapezoid_at_the_base_limits():
     segment = traj.segments[0]
     assert segment.breaks.size == 4  # accelerate, cruise, decelerate
     tb = segment.breaks[1]
-    v_max, a_max = DEFAULT_LIMITS.velocity[0], DEFAULT_LIMITS.acceleration[0]
+    v_max, a_max = ARM_LIMITS.velocity[0], ARM_LIMITS.acceleration[0]
     assert tb == pytest.approx(v_max / a_max, rel=RATE_TOL)
     states = traj.sample(np.array([0.5 * tb, 0.5 * traj.duration, traj.duration - 0.5 * tb]))
     assert_close(states.qdd[:, 0], [a_max, 0.0, -a_max], atol=RATE_TOL * a_max)
@@ -39,11 +39,11 @@ def test_short_move_is_a_triangle():
     traj = lspb(_base_move(20.0))
     segment = traj.segments[0]
     assert segment.breaks.size == 3  # no cruise
-    a_max = DEFAULT_LIMITS.acceleration[0]
+    a_max = ARM_LIMITS.acceleration[0]
     assert traj.duration == pytest.approx(2.0 * np.sqrt(np.radians(20.0) / a_max), rel=RATE_TOL)
     assert (
         np.abs(traj.sample(np.linspace(0, traj.duration, 501)).qd[:, 0]).max()
-        < (DEFAULT_LIMITS.velocity[0])
+        < (ARM_LIMITS.velocity[0])
     )
 
 
@@ -52,7 +52,7 @@ def test_given_duration_blends_at_the_acceleration_limit():
     assert traj.duration == pytest.approx(2.0)
     tb = traj.segments[0].breaks[1]
     acc = traj.sample(np.array([0.5 * tb])).qdd[0, 0]
-    assert acc == pytest.approx(DEFAULT_LIMITS.acceleration[0], rel=RATE_TOL)
+    assert acc == pytest.approx(ARM_LIMITS.acceleration[0], rel=RATE_TOL)
 
 
 def test_all_joints_follow_the_straight_line_in_joint_space():

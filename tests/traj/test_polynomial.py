@@ -5,18 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import ARM_LIMITS, JointPose, cubic, free_motion, generate, quintic
 from lynxsim.errors import InvalidInputError, LimitViolationError
-from lynxsim.traj import (
-    DEFAULT_LIMITS,
-    JointPose,
-    TrajectoryKind,
-    cubic,
-    cubic_coefficients,
-    free_motion,
-    generate,
-    quintic,
-    quintic_coefficients,
-)
+from lynxsim.traj import TrajectoryKind, cubic_coefficients, quintic_coefficients
 from lynxsim.traj.polynomial import quintic_scaling
 from tests.helpers import assert_close
 
@@ -84,7 +75,7 @@ def test_shortest_segment_reaches_its_binding_limit(kind):
     t = np.linspace(0.0, traj.duration, 20001)
     states = traj.sample(t)
     ratios = [
-        np.abs(states[order]).max(axis=0) / DEFAULT_LIMITS.of_order(order)
+        np.abs(states[order]).max(axis=0) / ARM_LIMITS.of_order(order)
         for order in TrajectoryKind(kind).limited_orders
     ]
     assert max(r.max() for r in ratios) == pytest.approx(1.0, rel=PEAK_RTOL)
@@ -116,7 +107,7 @@ def test_too_short_duration_names_joint_time_and_excess():
     err = info.value
     assert (err.joint, err.quantity, err.segment) == (4, "velocity", 0)
     assert err.value == pytest.approx(8.697, abs=1e-3)
-    assert err.limit == pytest.approx(DEFAULT_LIMITS.velocity[3])
+    assert err.limit == pytest.approx(ARM_LIMITS.velocity[3])
     assert err.time == pytest.approx(0.1)
 
 

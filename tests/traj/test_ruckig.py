@@ -9,8 +9,9 @@ import pytest
 import ruckig
 
 from lynxsim.arm import LYNX_ARM
+from lynxsim.arm.motion import ARM_LIMITS, JointPose, ruckig_trajectory
 from lynxsim.errors import SegmentDurationError
-from lynxsim.traj import DEFAULT_LIMITS, JointPose, ruckig_profile, ruckig_trajectory
+from lynxsim.traj import ruckig_profile
 from lynxsim.traj.ruckig_profile import profile_segment
 from tests.helpers import assert_close
 
@@ -33,10 +34,10 @@ def _random_ruckig(rng: np.random.Generator) -> ruckig.Trajectory:
     inp = ruckig.InputParameter(5)
     inp.current_position = rng.uniform(LYNX_ARM.lower, LYNX_ARM.upper).tolist()
     inp.target_position = rng.uniform(LYNX_ARM.lower, LYNX_ARM.upper).tolist()
-    inp.target_velocity = (rng.uniform(-0.5, 0.5, 5) * DEFAULT_LIMITS.velocity).tolist()
-    inp.max_velocity = list(DEFAULT_LIMITS.velocity)
-    inp.max_acceleration = list(DEFAULT_LIMITS.acceleration)
-    inp.max_jerk = list(DEFAULT_LIMITS.jerk)
+    inp.target_velocity = (rng.uniform(-0.5, 0.5, 5) * ARM_LIMITS.velocity).tolist()
+    inp.max_velocity = list(ARM_LIMITS.velocity)
+    inp.max_acceleration = list(ARM_LIMITS.acceleration)
+    inp.max_jerk = list(ARM_LIMITS.jerk)
     out = ruckig.Trajectory(5)
     ruckig.Ruckig(5).calculate(inp, out)
     return out

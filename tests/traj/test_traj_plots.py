@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from lynxsim.arm.motion import cubic, free_motion, quintic
 from lynxsim.plots.obstacles import inside_any
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.scene import REPORT_CYLINDER
-from lynxsim.traj import cubic, free_motion, quintic
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 Q = np.radians(

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import free_motion, quintic
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
-from lynxsim.traj import PolynomialSegment, Trajectory, free_motion, quintic
+from lynxsim.traj import PolynomialSegment, Trajectory
 from tests.helpers import assert_close
 
 Q = np.radians(
@@ -95,7 +96,7 @@ def test_results_are_read_only(traj):
 def test_polynomial_segment_validates_its_pieces():
     with pytest.raises(InvalidInputError, match="breaks must increase from 0"):
         PolynomialSegment(np.array([0.0, 1.0, 1.0]), np.zeros((2, 2, 5)))
-    with pytest.raises(InvalidInputError, match=r"coefficients must have shape \(2, D \+ 1, 5\)"):
+    with pytest.raises(InvalidInputError, match=r"coefficients must have shape \(2, D \+ 1, n\)"):
         PolynomialSegment(np.array([0.0, 1.0, 2.0]), np.zeros((1, 2, 5)))
 
 
@@ -113,4 +114,4 @@ def test_piecewise_segment_evaluates_each_piece_in_its_own_time():
 
 def test_segment_count_must_match_the_waypoints(traj):
     with pytest.raises(InvalidInputError, match="3 waypoints need 2 segments, got 1"):
-        Trajectory(traj.kind, traj.segments[:1], traj.waypoints, traj.limits)
+        Trajectory(traj.kind, traj.segments[:1], traj.waypoints, traj.bounds, traj.limits)

@@ -1,4 +1,4 @@
-"""The arm's row of the robot table (:mod:`lynxsim.robots`): a task to a played trajectory."""
+"""The arm's simulation side (named by :mod:`lynxsim.robots.arm`): a task to a played trajectory."""
 
 from __future__ import annotations
 
@@ -66,4 +66,4 @@ class ArmAdapter:
 
 
 ADAPTER = ArmAdapter()
-"""The adapter the robot table names."""
+"""The adapter the arm's record names."""

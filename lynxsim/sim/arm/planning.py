@@ -20,22 +20,27 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ik
-from lynxsim.arm.task import build_trajectory
+from lynxsim.arm.motion import (
+    ARM_BOUNDS,
+    ARM_LIMITS,
+    arm_lipschitz,
+    build_trajectory,
+    resolve_waypoints,
+)
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan import (
     PlannedMotion,
     PlannerName,
     ProgressCallback,
-    arm_lipschitz,
     plan_through,
 )
+from lynxsim.poses import ArmPose, JointPose
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.collision import CollisionChecker
 from lynxsim.tasks import Task
-from lynxsim.traj import ArmPose, JointPose, Trajectory, TrajectoryKind
+from lynxsim.traj import Trajectory, TrajectoryKind
 from lynxsim.traj.build import parse_kind
-from lynxsim.traj.waypoints import resolve_waypoints
 
 __all__ = ["DEFAULT_MARGIN_M", "PLANNING_CAP_M", "CheckerOracle", "plan_task", "task_trajectory"]
 
@@ -143,6 +148,8 @@ def plan_task(
         time_limit_s=time_limit_s,
         seed=seed,
         labels=[f"{a} -> {b}" for a, b in itertools.pairwise(names)],
+        bounds=ARM_BOUNDS,
+        limits=ARM_LIMITS,
         kind=TrajectoryKind.PLANNED,
         progress=progress,
         pose_names=names,
@@ -152,10 +159,16 @@ def plan_task(
 def task_trajectory(task: Task, kind: TrajectoryKind | str | None = None) -> Trajectory:
     """An arm task's trajectory of any type, ``planned`` included (seed 0, default planner).
 
-    The other types come from :func:`lynxsim.arm.task.build_trajectory` (pure);
+    The other types come from :func:`lynxsim.arm.motion.build_trajectory` (pure);
     ``planned`` needs the scene's collision checker, so it is built here.
     """
     chosen = task.trajectory if kind is None else parse_kind(kind)
     if chosen is TrajectoryKind.PLANNED:
         return plan_task(task).trajectory
-    return build_trajectory(task, chosen)
+    return build_trajectory(
+        task.poses,
+        chosen,
+        task.durations,
+        stretch=task.stretch,
+        pass_through=task.pass_through,
+    )

@@ -7,6 +7,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from lynxsim.arm.motion import tool_poses
 from lynxsim.scene import REPORT_SCENE, Scene
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
@@ -78,7 +79,7 @@ def run_arm_trajectory(
         progress=stepping,
     )
     if video is not None:
-        targets = np.array([p.position for p in trajectory.waypoints.poses])
+        targets = np.array([p.position for p in tool_poses(trajectory.waypoints)])
         render_log(model, playback.log, video, render or RenderSettings(), targets, rendering)
     if progress is not None:
         progress(1.0)

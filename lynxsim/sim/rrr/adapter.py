@@ -1,13 +1,13 @@
-"""The 3-RRR's row of the robot table (:mod:`lynxsim.robots`): a task to a played platform path."""
+"""The 3-RRR's simulation side (named by :mod:`lynxsim.robots.rrr`): a task to a played path."""
 
 from __future__ import annotations
 
 import os
 from dataclasses import dataclass
 
+from lynxsim.rrr.build import build_path
 from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
-from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr.task import run_rrr_path
@@ -57,8 +57,15 @@ class RRRAdapter:
 
     def prepare(self, task: Task, kind: str | None) -> RRRRun:
         """Plan the task's platform path of type ``kind`` (None: the task's own)."""
-        return RRRRun(task, path_from_task(task, kind))
+        path = build_path(
+            task.poses,
+            task.trajectory if kind is None else kind,
+            task.durations,
+            through=task.pass_through,
+            stretch=task.stretch,
+        )
+        return RRRRun(task, path)
 
 
 ADAPTER = RRRAdapter()
-"""The adapter the robot table names."""
+"""The adapter the 3-RRR's record names."""

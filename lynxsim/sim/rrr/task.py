@@ -7,9 +7,9 @@ import os
 import mujoco
 import numpy as np
 
+from lynxsim.rrr.build import build_path
 from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
-from lynxsim.rrr.task import path_from_task
 from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr.model import RRRIds
@@ -86,7 +86,7 @@ def run_rrr_task(
     settle_s: float = 0.5,
     progress: ProgressFn | None = None,
 ) -> Playback:
-    """Plan a 3-RRR task's path and play it (see :func:`path_from_task`, :func:`run_rrr_path`).
+    """Plan a 3-RRR task's path and play it (see :func:`run_rrr_path`).
 
     Raises:
         InvalidInputError: Not an rrr task, or a type not planned for it.
@@ -94,7 +94,13 @@ def run_rrr_task(
         PlatformPathError: It crosses a parallel singularity of ``mode``.
     """
     return run_rrr_path(
-        path_from_task(task, kind),
+        build_path(
+            task.poses,
+            task.trajectory if kind is None else kind,
+            task.durations,
+            through=task.pass_through,
+            stretch=task.stretch,
+        ),
         task=task.name,
         mode=mode,
         video=video,

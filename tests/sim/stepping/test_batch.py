@@ -11,8 +11,8 @@ import mujoco
 import numpy as np
 import pytest
 
-from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import InvalidInputError, LimitViolationError
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.sim.arm.batch import play_arm_batch
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm

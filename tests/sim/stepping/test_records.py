@@ -21,7 +21,7 @@ from mujoco import rollout as native
 
 import lynxsim.sim.stepping.native as native_module
 from lynxsim.arm import tool_pose
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper

@@ -18,7 +18,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from lynxsim.arm.task import build_trajectory
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.sim.arm.model import load_arm_scene, load_arm_spec
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper

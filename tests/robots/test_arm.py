@@ -11,13 +11,14 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import tool_pose
-from lynxsim.arm.task import build_trajectory
+from lynxsim.arm.motion import ArmPose, generate
 from lynxsim.errors import InvalidInputError, OutOfReachError
 from lynxsim.plots.obstacles import inside_any
 from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import REPORT_CYLINDER
 from lynxsim.tasks import PlanarPose, Task, load_task
-from lynxsim.traj import WAYPOINT_KINDS, ArmPose, TrajectoryKind, generate
+from lynxsim.traj import WAYPOINT_KINDS, TrajectoryKind
 from tests.helpers import assert_close
 
 TASKS = Path(__file__).resolve().parents[2] / "tasks"

@@ -6,9 +6,9 @@ fraction. ``s`` is the rest-to-rest quintic, so the tool stops at every
 waypoint and joint velocity and acceleration are continuous everywhere (the
 report's straight line, sampled at constant speed, jumps in velocity).
 
-Joints come from the closed-form IK of :mod:`lynxsim.arm.ik`, restricted to the
-solution branch of the segment's first waypoint (so the arm never changes
-configuration mid-line), for all samples in one vectorised evaluation. Joint
+Joints come from the closed-form IK, :func:`lynxsim.arm.ik`, for all samples
+in one vectorised call: its candidate of the solution branch of the segment's
+first waypoint (so the arm never changes configuration mid-line). Joint
 velocity, acceleration and jerk are exact: the chain rule through the IK
 (``q1`` from ``log(x + i y)``, the planar two-link arm solved as a complex
 linear system for each derivative order).
@@ -22,18 +22,21 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.angles import LIMIT_TOL, wrap_angle
-from lynxsim.arm import LYNX_ARM, ArmGeometry, ik
+from lynxsim.angles import wrap_angle
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry
+from lynxsim.arm.ik import ik, ik_candidates
+from lynxsim.arm.motion.space import ARM_LIMITS, joint_bounds
+from lynxsim.arm.motion.waypoints import ArmWaypointsLike, resolve_waypoints
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
 from lynxsim.inputs import instance, number_in_range
+from lynxsim.poses import ArmPose
 from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
 from lynxsim.traj.kinds import TrajectoryKind
-from lynxsim.traj.limits import DEFAULT_LIMITS, JointLimits
+from lynxsim.traj.limits import JointLimits
 from lynxsim.traj.polynomial import DURATION_HINT, check_options, quintic_scaling
 from lynxsim.traj.timing import Durations, scaled_shortest, segment_durations
 from lynxsim.traj.trajectory import Trajectory
-from lynxsim.traj.waypoints import ArmPose, WaypointsLike, check_geometry, resolve_waypoints
 
 __all__ = ["LineSegment", "cartesian_line"]
 
@@ -87,8 +90,13 @@ class LineSegment:
         ):
             raise InvalidInputError(f"branch must be 0..3, got {self.branch!r}")
         object.__setattr__(self, "branch", int(branch))
-        check_geometry(self.geometry)
+        instance(self.geometry, ArmGeometry, "geometry")
         object.__setattr__(self, "_rolls", (start.roll, end.roll))
+
+    @property
+    def n_joints(self) -> int:
+        """The arm's five joints."""
+        return 5
 
     @property
     def breakpoints(self) -> FloatArray:
@@ -99,70 +107,49 @@ class LineSegment:
         """Joint states at local times ``tau``, shape (4, n, 5); see :class:`Segment`."""
         return self.states(tau)[0]
 
-    def states(self, tau: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def states(self, tau: FloatArray) -> tuple[FloatArray, npt.NDArray[np.bool_]]:
         """Joint states and the reach test at local times.
 
         Args:
             tau: Local times, shape (n,) [s].
 
         Returns:
-            ``(states, cos_q3)``: states of shape (4, n, 5) as :meth:`evaluate`
-            (a view), and the elbow cosine before clipping, shape (n,) [-]
-            (the target is out of reach where ``|cos_q3| > 1``).
+            ``(states, in_reach)``: states of shape (4, n, 5) as :meth:`evaluate`
+            (a view), and the IK's reach test of the tool's targets, shape (n,)
+            (where it fails, the states are those of the nearest stretch).
         """
         with np.errstate(divide="ignore", invalid="ignore"):  # singularities give inf/NaN
             return self._states(tau)
 
-    def _states(self, tau: FloatArray) -> tuple[FloatArray, FloatArray]:
+    def _states(self, tau: FloatArray) -> tuple[FloatArray, npt.NDArray[np.bool_]]:
         g = self.geometry
-        l2, l3, lt, h = g.upper_arm, g.forearm, g.tool_length, g.shoulder_height
+        l2, l3, lt = g.upper_arm, g.forearm, g.tool_length
         duration = self.duration
         s = quintic_scaling(tau / duration)
         s[1] /= duration
         s[2] /= duration**2
         s[3] /= duration**3
-        p0, p1 = self.start.position, self.end.position
-        dx, dy, dz = p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]
-        side, elbow = divmod(self.branch, 2)
-        sigma = -1.0 if side else 1.0
-        dphi = sigma * (self.end.pitch - self.start.pitch)
+        p0, p1 = np.asarray(self.start.position), np.asarray(self.end.position)
+        dx, dy, dz = p1 - p0
+        dpitch = self.end.pitch - self.start.pitch
+        # The in-plane pitch q2 + q3 + q4 moves as the target's pitch, mirrored on side 1.
+        dphi = -dpitch if self.branch >= 2 else dpitch
         roll0, roll1 = self._rolls
         droll = roll1 - roll0
 
-        x = p0[0] + dx * s[0]
-        y = p0[1] + dy * s[0]
-        z = p0[2] + dz * s[0]
-        # Base angle and signed reach, folded as lynxsim.arm.ik does.
-        heading = np.arctan2(y, x)
-        rho = np.hypot(x, y)
-        folded = np.abs(heading) > np.pi / 2
-        q1 = np.where(folded, wrap_angle(heading + np.pi), heading)
-        reach = np.where(folded, -rho, rho)
-        # Pitch in the q1 direction: the target pitch, or pi minus it on side 1.
-        phi0 = sigma * self.start.pitch + (np.pi if side else 0.0)
-        phi = phi0 + dphi * s[0]
-        if side:
-            q1 = wrap_angle(q1 + np.pi)
-            reach = -reach
-        e_phi = np.exp(1j * phi) if dphi else complex(math.cos(phi0), math.sin(phi0))
-        # Wrist point in the arm's plane: W = l2 e^{i q2} + l3 e^{i (q2 + q3)}.
-        w = reach + 1j * (z - h) - lt * e_phi
-        cos3 = (w.real**2 + w.imag**2 - l2 * l2 - l3 * l3) / (2.0 * l2 * l3)
-        c3 = np.clip(cos3, -1.0, 1.0)
-        s3 = np.sqrt(1.0 - c3 * c3)
-        q3 = np.arccos(c3)
-        if not elbow:
-            s3 = -s3
-            q3 = -q3
-        e3 = c3 + 1j * s3
-        e2 = w / (l2 + l3 * e3)  # e^{i q2}
-        q2 = np.angle(e2)
+        points = p0 + s[0][:, None] * (p1 - p0)
+        x, y = points[:, 0], points[:, 1]
+        # The joints: the IK's candidate of the segment's branch at every sample.
+        candidates, in_reach = ik_candidates(points, self.start.pitch + dpitch * s[0], g)
+        q = candidates[:, self.branch]  # (5, n)
+        q1, q2, q3 = q[0], q[1], q[2]
+        reach = x * np.cos(q1) + y * np.sin(q1)  # signed horizontal reach in the arm's plane
+        e2 = np.exp(1j * q2)
+        e3 = np.exp(1j * q3)
+        s3 = e3.imag
 
         out = np.empty((4, 5, tau.size))
-        out[0, 0] = q1
-        out[0, 1] = q2
-        out[0, 2] = q3
-        out[0, 3] = wrap_angle(phi - q2 - q3)
+        out[0, :4] = q[:4]
         out[0, 4] = roll0 + droll * s[0]
 
         # q1 = Im log(x + i y) and ln|reach| = Re log(x + i y), differentiated.
@@ -175,10 +162,12 @@ class LineSegment:
         r2 = reach * (lg2.real + lg1.real**2)
         r3 = reach * (lg3.real + 3.0 * lg1.real * lg2.real + lg1.real**3)
         phi1, phi2, phi3 = dphi * s[1], dphi * s[2], dphi * s[3]
+        # Wrist point in the arm's plane: W = l2 e^{i q2} + l3 e^{i (q2 + q3)}, differentiated.
         w1 = r1 + 1j * (dz * s[1])
         w2 = r2 + 1j * (dz * s[2])
         w3 = r3 + 1j * (dz * s[3])
         if dphi:
+            e_phi = np.exp(1j * (q2 + q3 + q[3]))  # the in-plane tool direction
             w1 -= lt * (1j * phi1) * e_phi
             w2 -= lt * (1j * phi2 - phi1 * phi1) * e_phi
             w3 -= lt * (1j * phi3 - 3.0 * phi1 * phi2 - 1j * phi1**3) * e_phi
@@ -203,7 +192,7 @@ class LineSegment:
             out[order, 2] = b - a
             out[order, 3] = dphi_k - b
             out[order, 4] = droll * s_k
-        return out.transpose(0, 2, 1), cos3
+        return out.transpose(0, 2, 1), in_reach
 
 
 def _branch(q: FloatArray, pose: ArmPose, geometry: ArmGeometry) -> int:
@@ -220,7 +209,7 @@ class _UnitPath:
         self.k = k
         self.segment = segment
         self.u = check_grid(segment)
-        self.states, self.cos3 = segment.states(self.u)
+        self.states, self.in_reach = segment.states(self.u)
         self.label = f"straight line {names[k]} -> {names[k + 1]} (segment {k + 1})"
         self.points = np.asarray(segment.start.position) + np.outer(
             quintic_scaling(self.u)[0],
@@ -235,8 +224,8 @@ class _UnitPath:
 
     def check_reach(self) -> None:
         """Raise if the line leaves the reach or passes a singular configuration."""
-        # The IK's reach test: a line between poses it solves is not refused at its ends.
-        out = np.flatnonzero(np.abs(self.cos3) > 1.0 + LIMIT_TOL)
+        # The IK's own reach test: a line between poses it solves is not refused at its ends.
+        out = np.flatnonzero(~self.in_reach)
         if out.size:
             raise OutOfReachError(f"{self.label} leaves the arm's reach {self.at(int(out[0]))}")
         bad = np.argwhere(~np.isfinite(self.states[1:]))
@@ -272,10 +261,10 @@ class _UnitPath:
 
 
 def cartesian_line(
-    waypoints: WaypointsLike,
+    waypoints: ArmWaypointsLike,
     durations: Durations = None,
     *,
-    limits: JointLimits = DEFAULT_LIMITS,
+    limits: JointLimits = ARM_LIMITS,
     stretch: bool = False,
     geometry: ArmGeometry = LYNX_ARM,
 ) -> Trajectory:
@@ -285,7 +274,7 @@ def cartesian_line(
     durations given, each line takes the shortest time that keeps them.
 
     Args:
-        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.traj.waypoints`.
+        waypoints: Poses or joints, shape (N, 5) [rad]; see :mod:`lynxsim.arm.motion.waypoints`.
         durations: Segment durations [s]; see :mod:`lynxsim.traj.timing`.
         limits: Joint limits to respect.
         stretch: Lengthen given durations that are too short for the limits.
@@ -303,7 +292,7 @@ def cartesian_line(
         InvalidInputError: Malformed waypoints, durations or options, or limits
             so low that a line needs more than 3600 s.
     """
-    limits, stretch, geometry = check_options(limits, stretch, geometry)
+    bounds, limits, stretch = check_options(joint_bounds(geometry), limits, stretch)
     wp = resolve_waypoints(waypoints, geometry)
     unit = [
         LineSegment(a, b, 1.0, _branch(q, a, geometry), geometry)
@@ -320,9 +309,9 @@ def cartesian_line(
         LineSegment(seg.start, seg.end, float(t), seg.branch, geometry)
         for seg, t in zip(unit, times)
     )
-    traj = Trajectory(TrajectoryKind.LINE, segments, wp, limits)
+    traj = Trajectory(TrajectoryKind.LINE, segments, wp.joints, bounds, limits)
     extremes = [e.time_scaled(float(t)) for e, t in zip(unit_extremes, times)]
-    check_trajectory(traj, geometry, hint=DURATION_HINT, extremes=extremes)
+    check_trajectory(traj, hint=DURATION_HINT, extremes=extremes)
     for path in paths:
         path.check_jumps()
     return traj

@@ -5,7 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 from lynxsim.arm import LYNX_ARM, tool_pose
-from lynxsim.traj import ArmPose, Trajectory, TrajectoryKind
+from lynxsim.arm.motion import tool_poses
+from lynxsim.poses import ArmPose
+from lynxsim.traj import Trajectory, TrajectoryKind
 from tests.helpers import assert_close
 
 CASES = 200
@@ -78,7 +80,7 @@ def assert_invariants(
     at_wp = traj.sample(traj.waypoint_times)
     tol = RUCKIG_TOL if kind is TrajectoryKind.RUCKIG else POS_TOL
     assert_close(at_wp.q, q_wp, atol=tol, err_msg="waypoint joints")
-    targets = np.array([p.position for p in traj.waypoints.poses])
+    targets = np.array([p.position for p in tool_poses(traj.waypoints)])
     assert_close(tool_pose(at_wp.q).position, targets, atol=tol, err_msg="waypoint tool")
 
     ends = [s.evaluate(np.array([s.duration]))[:, 0] for s in traj.segments]  # (4, 5) each
@@ -123,7 +125,7 @@ def assert_straight(traj: Trajectory, t: np.ndarray, p: np.ndarray) -> None:
     """Tool points at times ``t`` lie on their segment's straight line, between its ends."""
     times = traj.waypoint_times
     seg = np.clip(np.searchsorted(times, t, side="right") - 1, 0, len(traj.segments) - 1)
-    targets = np.array([pose.position for pose in traj.waypoints.poses])
+    targets = np.array([pose.position for pose in tool_poses(traj.waypoints)])
     a, b = targets[seg], targets[seg + 1]
     d = b - a
     length2 = np.einsum("ij,ij->i", d, d)

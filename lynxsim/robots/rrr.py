@@ -1,23 +1,17 @@
-"""A 3-RRR task's motion: its platform poses timed into a :class:`PlatformPath`."""
+"""The 3-RRR's record: a 3-RRR task's motion, its platform poses timed into a path."""
 
 from __future__ import annotations
 
-import numpy as np
-
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import instance
-from lynxsim.rrr.path import (
-    DEFAULT_PLATFORM_LIMITS,
-    RRR_TRAJECTORY_KINDS,
-    PlatformLimits,
-    PlatformPath,
-    platform_path,
-)
-from lynxsim.tasks import PlanarPose, Task
-from lynxsim.traj.build import parse_kind
+from lynxsim.poses import PlanarPose
+from lynxsim.robots import RobotParts
+from lynxsim.rrr.build import build_path
+from lynxsim.rrr.path import DEFAULT_PLATFORM_LIMITS, PlatformLimits, PlatformPath
+from lynxsim.tasks import Task
 from lynxsim.traj.kinds import TrajectoryKind
 
-__all__ = ["path_from_task"]
+__all__ = ["ROBOT", "path_from_task"]
 
 
 def path_from_task(
@@ -46,22 +40,23 @@ def path_from_task(
             (unreachable poses, durations out of range or too short).
     """
     task = instance(task, Task, "task")
-    poses = [p for p in task.poses if isinstance(p, PlanarPose)]
-    if len(poses) != len(task.poses):
+    if not all(isinstance(p, PlanarPose) for p in task.poses):
         raise InvalidInputError(
             f"task {task.name!r} is for robot {task.robot!r}; its poses are not platform poses"
         )
-    chosen = task.trajectory if kind is None else parse_kind(kind)
-    if chosen not in RRR_TRAJECTORY_KINDS:
-        raise InvalidInputError(
-            f"trajectory type {chosen.value!r} is not planned for the 3-RRR robot; "
-            f"expected one of: {', '.join(k.value for k in RRR_TRAJECTORY_KINDS)}"
-        )
-    return platform_path(
-        np.array([[p.x, p.y, p.alpha] for p in poses]),
+    return build_path(
+        task.poses,
+        task.trajectory if kind is None else kind,
         task.durations,
-        names=[p.name for p in poses],
         through=task.pass_through,
         stretch=task.stretch,
         limits=limits,
     )
+
+
+ROBOT = RobotParts(
+    motion=path_from_task,
+    model="rrr/scene.xml",
+    adapter="lynxsim.sim.rrr.adapter:ADAPTER",
+)
+"""The 3-RRR's record (its row: :mod:`lynxsim.registry`)."""

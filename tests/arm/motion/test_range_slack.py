@@ -7,8 +7,7 @@ import pytest
 
 from lynxsim.angles import LIMIT_TOL
 from lynxsim.arm import IKStatus, ik, tool_pose
-from lynxsim.errors import JointRangeError
-from lynxsim.traj import (
+from lynxsim.arm.motion import (
     ArmPose,
     JointPose,
     cartesian_line,
@@ -18,6 +17,7 @@ from lynxsim.traj import (
     quintic,
     ruckig_trajectory,
 )
+from lynxsim.errors import JointRangeError
 
 GENERATORS = [free_motion, cubic, quintic, lspb, ruckig_trajectory, cartesian_line]
 OTHER = ArmPose((0.2, 0.05, 0.2), 0.0)

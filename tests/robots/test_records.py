@@ -1,4 +1,4 @@
-"""The robot table: every row resolves, and it is the only place that names a robot."""
+"""The robot rows and records: every row resolves, and only they name a robot."""
 
 from __future__ import annotations
 
@@ -8,11 +8,12 @@ from pathlib import Path
 import pytest
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.robots import ROBOTS, motion_builder, robot, sim_adapter
+from lynxsim.registry import info, names
+from lynxsim.robots import motion_builder, robot, sim_adapter
 from lynxsim.tasks import load_task
 
-TASKS = Path(__file__).resolve().parents[1] / "tasks"
-PACKAGE = Path(__file__).resolve().parents[1] / "lynxsim"
+TASKS = Path(__file__).resolve().parents[2] / "tasks"
+PACKAGE = Path(__file__).resolve().parents[2] / "lynxsim"
 
 
 @pytest.mark.parametrize("path", sorted(TASKS.glob("*.toml")), ids=lambda p: p.stem)
@@ -26,9 +27,9 @@ def test_every_shipped_task_builds_and_prepares_through_its_row(path: Path) -> N
 
 
 def test_each_row_names_importable_parts() -> None:
-    for name, entry in ROBOTS.items():
-        assert entry.name == name
-        assert (PACKAGE / "models" / entry.model).is_file()
+    for name in names():
+        assert info(name).name == name
+        assert (PACKAGE / "models" / robot(name).model).is_file()
         assert callable(motion_builder(name))
         assert sim_adapter(name).default_camera
 
@@ -36,16 +37,18 @@ def test_each_row_names_importable_parts() -> None:
 def test_unknown_robot_lists_the_known_ones() -> None:
     with pytest.raises(InvalidInputError, match="expected one of: arm, rrr"):
         robot("scara")
+    with pytest.raises(InvalidInputError, match="unknown robot 'scara'; expected one of: arm, rrr"):
+        info("scara")
 
 
 def test_no_module_compares_a_robot_name() -> None:
     """A module that tests ``x == "arm"`` would need editing for every new robot."""
-    names = set(ROBOTS)
+    robot_names = set(names())
     offenders = []
     for source in PACKAGE.rglob("*.py"):
         for node in ast.walk(ast.parse(source.read_text())):
             if isinstance(node, ast.Compare):
                 for side in [node.left, *node.comparators]:
-                    if isinstance(side, ast.Constant) and side.value in names:
+                    if isinstance(side, ast.Constant) and side.value in robot_names:
                         offenders.append(f"{source.relative_to(PACKAGE)}:{node.lineno}")
     assert offenders == []

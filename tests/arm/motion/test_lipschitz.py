@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import LYNX_ARM, frame_origins
+from lynxsim.arm.motion import HAND_EXTENT_M, arm_lipschitz, joint_radii
 from lynxsim.errors import InvalidInputError
-from lynxsim.plan import HAND_EXTENT_M, arm_lipschitz, joint_radii
 
 PAIRS = 2000
 """Random joint-vector pairs checked [-]."""

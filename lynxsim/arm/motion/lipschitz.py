@@ -29,8 +29,7 @@ from __future__ import annotations
 
 import math
 
-from lynxsim.arm import LYNX_ARM, ArmGeometry
-from lynxsim.arm.geometry import check_geometry
+from lynxsim.arm.geometry import LYNX_ARM, ArmGeometry, check_geometry
 from lynxsim.bounds import check_range
 
 __all__ = ["HAND_EXTENT_M", "arm_lipschitz", "joint_radii"]

@@ -12,9 +12,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from lynxsim.arm.motion import generate
 from lynxsim.errors import LimitViolationError, PathError, UnreachablePoseError
-from lynxsim.traj import WAYPOINT_KINDS, Trajectory, TrajectoryKind, generate
-from tests.traj.cases import (
+from lynxsim.traj import WAYPOINT_KINDS, Trajectory, TrajectoryKind
+from tests.arm.motion.cases import (
     CASES,
     LINE_LOWER,
     LINE_UPPER,

@@ -9,17 +9,18 @@ import numpy as np
 import pytest
 
 from lynxsim.arm import LYNX_ARM, ik, tool_pose
-from lynxsim.arm.task import build_trajectory
+from lynxsim.arm.motion import ArmPose, LineSegment, cartesian_line
+from lynxsim.arm.motion.cartesian import _branch
 from lynxsim.errors import LimitViolationError, OutOfReachError, PathError
 from lynxsim.reproduce.arm_tables import TABLE4
+from lynxsim.robots.arm import build_trajectory
 from lynxsim.tasks import load_task
-from lynxsim.traj import ArmPose, LineSegment, TrajectoryKind, cartesian_line
-from lynxsim.traj.cartesian import _branch
+from lynxsim.traj import TrajectoryKind
 from lynxsim.traj.polynomial import quintic_scaling
+from tests.arm.motion.cases import LINE_LOWER, LINE_UPPER, as_poses, assert_straight
 from tests.helpers import assert_close
-from tests.traj.cases import LINE_LOWER, LINE_UPPER, as_poses, assert_straight
 
-TASKS = Path(__file__).resolve().parents[2] / "tasks"
+TASKS = Path(__file__).resolve().parents[3] / "tasks"
 
 IK_TOL = 1e-12
 """Joints of the line's closed form against lynxsim.arm.ik [rad]."""
