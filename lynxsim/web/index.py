@@ -93,7 +93,7 @@ def _section(s: IndexSection) -> str:
         for f in s.figures:
             h, c = html.escape(f.href), html.escape(f.caption)
             parts.append(
-                f'<figure><a href="{h}"><img src="{h}" alt="{c}" loading="lazy"></a>'
+                f'<figure><a href="{h}"><img src="{h}" alt="{c}"></a>'
                 f"<figcaption>{c}</figcaption></figure>"
             )
         parts.append("</div>")

@@ -133,7 +133,10 @@ def point_error_bound(
         The bound, (..., B) [m].
     """
     dp = np.linalg.norm(np.asarray(pos, dtype=float) - np.asarray(pos_true, dtype=float), axis=-1)
-    dot = np.abs(np.sum(np.asarray(quat, dtype=float) * np.asarray(quat_true, dtype=float), -1))
-    half_angle = np.arccos(np.clip(dot, 0.0, 1.0))
-    out: FloatArray = dp + 2.0 * np.asarray(reach_m, dtype=float) * np.sin(half_angle)
+    q1, q2 = np.asarray(quat_true, dtype=float), np.asarray(quat, dtype=float)
+    # sin(theta / 2) is the length of the vector part of conj(q1) q2 (well conditioned near 0,
+    # unlike the arccos of a dot product)
+    w1, v1, w2, v2 = q1[..., :1], q1[..., 1:], q2[..., :1], q2[..., 1:]
+    sin_half = np.linalg.norm(w1 * v2 - w2 * v1 - np.cross(v1, v2), axis=-1)
+    out: FloatArray = dp + 2.0 * np.asarray(reach_m, dtype=float) * sin_half
     return out

@@ -19,6 +19,7 @@ from lynxsim.web.poses import dequantise_positions, dequantise_quaternions, inte
 __all__ = [
     "CONTACT_KINDS",
     "GEOM_KINDS",
+    "MAX_ABS",
     "Clearances",
     "ContactSpans",
     "QuantisedPoses",
@@ -40,6 +41,9 @@ GEOM_KINDS: dict[int, str] = {
     6: "box",
 }
 """The primitive kinds a replay draws, by MuJoCo's ``mjtGeom`` value."""
+
+MAX_ABS = 1e6
+"""Largest magnitude of any number of a replay (metres, seconds, degrees alike)."""
 
 CONTACT_KINDS = ("obstacle", "self", "support")
 """What a contact span is, by its ``kind`` value: an obstacle hit (robot or
@@ -71,6 +75,8 @@ def _array(value: npt.ArrayLike, name: str, shape: tuple[int | None, ...]) -> Fl
         raise ReplayFieldError(name, f"must have shape {want}, got {a.shape}")
     if not np.isfinite(a).all():
         raise ReplayFieldError(name, "must be finite")
+    if (np.abs(a) > MAX_ABS).any():
+        raise ReplayFieldError(name, f"must lie within ±{MAX_ABS:g}")
     return a
 
 
@@ -164,7 +170,7 @@ class ReplayCamera:
         if not np.allclose(m.T @ m, np.eye(3), atol=1e-6):
             raise ReplayFieldError(f"{field}.xmat", "must be a rotation")
         fovy = _array(self.fovy, f"{field}.fovy", ())
-        if not (0.0 < float(fovy) < (180.0 if not self.orthographic else 1e6)):
+        if not (0.0 < float(fovy) < (180.0 if not self.orthographic else MAX_ABS)):
             raise ReplayFieldError(f"{field}.fovy", f"out of range: {float(fovy)!r}")
         if not isinstance(self.orthographic, bool):
             raise ReplayFieldError(f"{field}.orthographic", "must be True or False")

@@ -11,8 +11,11 @@ from __future__ import annotations
 
 import io
 import json
+import math
 import os
+import tokenize
 import zipfile
+import zlib
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -166,13 +169,44 @@ def write_replay_file(data: ReplayData, dest: str | os.PathLike[str]) -> Path:
             _entry(z, "meta", np.array(meta))
             for name, array in _arrays(data).items():
                 _entry(z, name, array)
-        back = read_replay_file(tmp)
+        try:
+            back = read_replay_file(tmp)
+        except ReplayFileError as exc:
+            raise ReplayFileError(
+                os.fspath(dest), exc.field, "written, it does not read back"
+            ) from None
         if _meta(back) != _meta(data) or any(
             not np.array_equal(a, b)
             for a, b in zip(_arrays(back).values(), _arrays(data).values(), strict=True)
         ):
             raise ReplayFileError(os.fspath(dest), None, "did not read back as written")
     return Path(dest)
+
+
+def _npy(blob: bytes) -> npt.NDArray[Any]:
+    """The array of one ``.npy`` file's bytes, its header checked against its length first.
+
+    Raises:
+        ValueError: Not a ``.npy`` file of plain numbers or text, or not as long
+            as its header says.
+    """
+    f = io.BytesIO(blob)
+    try:
+        version = np.lib.format.read_magic(f)
+        if version == (1, 0):
+            shape, fortran, dtype = np.lib.format.read_array_header_1_0(f)
+        elif version in ((2, 0), (3, 0)):
+            shape, fortran, dtype = np.lib.format.read_array_header_2_0(f)
+        else:
+            raise ValueError(f"unknown .npy version {version}")
+    except (SyntaxError, tokenize.TokenError, TypeError, OverflowError, MemoryError) as exc:
+        raise ValueError(f"bad header ({type(exc).__name__})") from None
+    if dtype.hasobject or dtype.kind not in "biufU":
+        raise ValueError(f"holds {dtype}, not numbers or text")
+    data = blob[f.tell() :]
+    if math.prod(shape) * dtype.itemsize != len(data):
+        raise ValueError(f"its header says {shape} of {dtype}, but {len(data)} bytes follow")
+    return np.frombuffer(data, dtype=dtype).reshape(shape, order="F" if fortran else "C")
 
 
 def _read_entries(path: Path) -> dict[str, npt.NDArray[Any]]:
@@ -194,8 +228,8 @@ def _read_entries(path: Path) -> dict[str, npt.NDArray[Any]]:
             field = info.filename.removesuffix(".npy")
             try:
                 with z.open(info) as f:
-                    array = np.lib.format.read_array(io.BytesIO(f.read()), allow_pickle=False)
-            except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+                    array = _npy(f.read())
+            except (ValueError, OSError, EOFError, zipfile.BadZipFile, zlib.error) as exc:
                 raise ReplayFileError(name, field, f"not a NumPy array ({exc})") from None
             expected = "<U" if field == "meta" else _DTYPES[field]
             if not array.dtype.str.startswith(expected) or (

@@ -185,17 +185,15 @@ def _pairs(items: JsonValue) -> str:
     )
 
 
-def _metric(key: str, v: JsonValue) -> str:
+def _metric(key: str, v: JsonValue) -> VerdictRow:
     """A robot metric by its unit suffix: m as mm, rad as degrees, rad/s as deg/s."""
-    if isinstance(v, bool) or not isinstance(v, int | float):
-        return str(v)
-    if key.endswith("_rad_s"):
-        return f"{math.degrees(v):.2f} deg/s"
-    if key.endswith("_rad"):
-        return f"{math.degrees(v):.3f} deg"
-    if key.endswith("_m"):
-        return f"{v * 1e3:.2f} mm"
-    return f"{v:g}"
+    units = (("_rad_s", 180 / math.pi, "{:.2f} deg/s"), ("_rad", 180 / math.pi, "{:.3f} deg"))
+    for suffix, scale, form in (*units, ("_m", 1e3, "{:.2f} mm")):
+        if key.endswith(suffix) and _is_number(v):
+            label = key.removesuffix(suffix).replace("_", " ")
+            return VerdictRow(label, form.format(scale * _number(v)), "info")
+    value = f"{v:g}" if _is_number(v) else str(v)
+    return VerdictRow(key.replace("_", " "), value, "info")
 
 
 def verdict_rows(report: ReportDict) -> list[VerdictRow]:
@@ -257,8 +255,7 @@ def verdict_rows(report: ReportDict) -> list[VerdictRow]:
     )
     metrics = r["metrics"]
     if isinstance(metrics, dict):
-        for key, v in metrics.items():
-            rows.append(VerdictRow(key.replace("_", " "), _metric(key, v), "info"))
+        rows.extend(_metric(key, v) for key, v in metrics.items())
     health = "healthy" if r["healthy"] else "NOT healthy"
     if r["diverged_at_s"] is not None:
         health += f": diverged at {_s(r['diverged_at_s'])}"
