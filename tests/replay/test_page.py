@@ -7,14 +7,16 @@ import dataclasses
 import html
 import json
 import re
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from lynxsim.errors import InvalidInputError, ReplayFileError
-from lynxsim.web.page import page_payload, replay_page
+from lynxsim.errors import InvalidInputError, OutputPathError, ReplayFileError
+from lynxsim.web.page import page_payload, replay_page, write_replay_page
 from lynxsim.web.verdicts import canonical_json, check_report, read_report, verdict_rows
 
 _SETTINGS = settings(
@@ -116,3 +118,26 @@ def test_any_json_is_a_report_or_refused_with_a_field(tmp_path, value):
         assert outcome.path == str(path)
     else:
         assert outcome  # a report: it has its table
+
+
+def test_the_web_side_never_imports_mujoco():
+    code = (
+        "import sys, lynxsim.web.page, lynxsim.web.index, lynxsim.web.replay_file, "
+        "lynxsim.cli.view; print('mujoco' in sys.modules)"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True
+    )
+    assert result.stdout == "False\n"
+
+
+def test_a_page_is_written_whole_or_not_at_all(planned_run, tmp_path):
+    folder = tmp_path / "page.html"
+    folder.mkdir()
+    with pytest.raises(OutputPathError, match="it is a folder"):
+        write_replay_page(planned_run.data, folder)
+    bad = dataclasses.replace(planned_run.data)
+    object.__setattr__(bad, "report_json", "[]")  # fails while making the page
+    with pytest.raises(InvalidInputError):
+        write_replay_page(bad, tmp_path / "x.html")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["page.html"]
