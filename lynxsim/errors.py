@@ -196,7 +196,24 @@ class VideoError(LynxsimError, OSError):
     """The video encoder failed, or the file it wrote does not decode to the frames given."""
 
 
-__all__ += ["OutputPathError", "VideoError"]
+class ReplayFileError(LynxsimError, ValueError):
+    """A replay's data file or run report that is not what lynxsim wrote, or not one run's pair.
+
+    Attributes:
+        path: The file.
+        field: The offending entry or field (``"poses.quat_q"``), or None when
+            the problem is the file as a whole.
+    """
+
+    def __init__(self, path: str, field: str | None, problem: str) -> None:
+        shown = path if path.isprintable() else repr(path)
+        where = f"{shown}: {field}" if field else shown
+        super().__init__(f"{where}: {problem}")
+        self.path = path
+        self.field = field
+
+
+__all__ += ["OutputPathError", "ReplayFileError", "VideoError"]
 
 
 def short(value: object) -> str:

@@ -33,6 +33,7 @@ BASE = frozenset(
         "poses",
         "registry",
         "verdicts",
+        "web",
     }
 )
 """Layer 0: plain values and checks, importing nothing of lynxsim above them."""

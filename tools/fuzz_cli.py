@@ -61,8 +61,9 @@ FLAGS: dict[str, list[str]] = {
     ],
     "play": [
         "--type", "--out", "--no-video", "--no-obstacle", "--camera", "--mode", "--quality",
-        "--fps", "--json", "--quiet",
+        "--fps", "--json", "--quiet", "--html",
     ],
+    "view": ["--out", "--quiet"],
     "plan": [
         "--planner", "--margin-mm", "--seed", "--time-limit-s", "--out-dir", "--format",
         "--rate-hz", "--si", "--json", "--quiet",
@@ -137,6 +138,9 @@ def random_argv(rng: random.Random, sandbox: dict[str, Path]) -> list[str]:
                  for _ in range(max(n, 0))]  # fmt: skip
     elif command == "sweep":  # never a valid sweep file: a sweep runs thousands of runs
         argv.append(rng.choice(paths))
+    elif command == "view":  # a report that play wrote in the sandbox, or anything else
+        reports = ["videos/short_quintic.json", "videos/short_rrr_quintic.json"]
+        argv.append(rng.choice([*reports, *paths]))
     elif command in ("traj", "play", "plan"):
         task = rng.choice([sandbox["arm_task"]] * 4 + [sandbox["evil_task"], sandbox["rrr_task"]])
         argv.append(str(task) if rng.random() < 0.9 else rng.choice(paths))

@@ -55,6 +55,7 @@ def _simulations(args: argparse.Namespace) -> None:
     from lynxsim.cli.play import SUMMARY_HEADER, summary_row
     from lynxsim.demo.arm import arm_jobs, arm_runs
     from lynxsim.demo.expert import EXPERT_SEED, EXPERT_VIDEO, expert_job
+    from lynxsim.demo.index_page import write_demo_index
     from lynxsim.demo.jobs import Job, run_jobs
     from lynxsim.demo.obstacle_map import MAP_DIR, MAP_STEP_MM, MapSummary, map_job
     from lynxsim.demo.rrr import FIGURE20_FILE, rrr_jobs
@@ -119,6 +120,7 @@ def _simulations(args: argparse.Namespace) -> None:
                 print(f"  {task:20s} {kind:8s} {clear:5d} of {placements:5d} ({share:.0%})")
             print(f"  maps in {out / MAP_DIR}/")
     print(f"\nVideos and JSON reports in {out}/, plots in {out / 'plots'}/")
+    print(f"All of it on one page: {write_demo_index(out, results)}")
 
 
 def _demo(args: argparse.Namespace) -> int:

@@ -1,4 +1,4 @@
-"""``lynxsim play``: a task through MuJoCo, with its run report and an MP4."""
+"""``lynxsim play``: a task through MuJoCo, with its run report, its replay data and an MP4."""
 
 from __future__ import annotations
 
@@ -15,6 +15,8 @@ from lynxsim.cli.flags import add_quality_flag, quality_of
 from lynxsim.errors import InvalidInputError
 from lynxsim.fileio import check_destination, output_path
 from lynxsim.sim.report import RunReport
+from lynxsim.web.page import page_from_file
+from lynxsim.web.replay_file import REPLAY_SUFFIX
 
 if TYPE_CHECKING:
     from lynxsim.tasks import Task
@@ -153,6 +155,8 @@ def _play(args: argparse.Namespace) -> int:
     if out.suffix.lower() != ".mp4":
         raise InvalidInputError(f"--out must name an .mp4 file, got {out}")
     check_destination(out.with_suffix(".json"))
+    replay = check_destination(out.with_suffix(REPLAY_SUFFIX))
+    page = check_destination(out.with_suffix(".html")) if args.html else None
     if not args.no_video:
         check_destination(out)
     update, close = progress_bar(f"{task.name} {prepared.label}", args.json or args.quiet)
@@ -166,14 +170,19 @@ def _play(args: argparse.Namespace) -> int:
                     fps=args.fps,
                 ),
                 progress=update,
+                replay=replay,
                 **options,
             )
     finally:
         close()
-    return _print_run(args, playback.report, None if args.no_video else out, out)
+    if page is not None:
+        page_from_file(replay, page)
+    return _print_run(args, playback.report, None if args.no_video else out, out, page)
 
 
-def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None, out: Path) -> int:
+def _print_run(
+    args: argparse.Namespace, report: RunReport, video: Path | None, out: Path, page: Path | None
+) -> int:
     report.write_json(out.with_suffix(".json"))
     if args.json:
         print(json.dumps(report.to_dict(), indent=2))
@@ -181,6 +190,8 @@ def _print_run(args: argparse.Namespace, report: RunReport, video: Path | None, 
         print(format_report(report))
         if video is not None:
             print(f"video: {video} (report {Path(video).with_suffix('.json')})")
+        if page is not None:
+            print(f"replay: {page} (open it in a browser; 'lynxsim view REPORT.json' remakes it)")
     return 0
 
 
@@ -209,6 +220,12 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         help="MP4 path (default videos/TASK_TYPE.mp4)",
     )
     p.add_argument("--no-video", action="store_true", help="simulate only")
+    p.add_argument(
+        "--html",
+        action="store_true",
+        help="also write the run's replay page FILE.html beside the report (the replay data "
+        "FILE.replay.npz is always saved, for 'lynxsim view')",
+    )
     p.add_argument(
         "--no-obstacle",
         action="store_const",

@@ -1,6 +1,7 @@
 """The arm part of the main job: every task of ``tasks/`` simulated with every trajectory type.
 
-Writes, under one output folder, an MP4 and a JSON run report per run, joint
+Writes, under one output folder, an MP4, a JSON run report, its replay data and
+its replay page per run, joint
 profile plots and a tool-path comparison per task; returns the reports for the
 summary table. Each run and each comparison is a :class:`~lynxsim.demo.jobs.Job`
 of its own (``lynxsim demo`` runs them in a pool with the 3-RRR part's).
@@ -24,6 +25,8 @@ from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory, TrajectoryKind
+from lynxsim.web.page import page_from_file
+from lynxsim.web.replay_file import REPLAY_SUFFIX
 
 __all__ = ["PLOT_COST", "DemoRun", "arm_jobs", "arm_runs", "run_arm_demo"]
 
@@ -66,8 +69,10 @@ def _play(
         video=out / f"{run.stem}.mp4",
         render=render,
         progress=progress,
+        replay=out / f"{run.stem}{REPLAY_SUFFIX}",
     )
     playback.report.write_json(out / f"{run.stem}.json")
+    page_from_file(out / f"{run.stem}{REPLAY_SUFFIX}", out / f"{run.stem}.html")
     return playback.report
 
 

@@ -2,7 +2,8 @@
 
 Writes, under one output folder, per task of ``tasks/`` with ``robot = "rrr"``
 an MP4 from the orthographic ``top`` camera with the platform's path traced,
-its JSON run report and, in ``plots/``, the path drawn over its workspace;
+its JSON run report, its replay data and page and, in ``plots/``, the path
+drawn over its workspace;
 the workspace maps of the report's Figure 21 orientations in ``plots/``;
 and ``rrr_figure20_simulation.txt``, the simulation's verdicts on the
 report's Figure 20 poses. Returns the run reports for the summary table. Each
@@ -33,6 +34,8 @@ from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
 from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.tasks import Task, find_tasks
+from lynxsim.web.page import page_from_file
+from lynxsim.web.replay_file import REPLAY_SUFFIX
 
 __all__ = [
     "FIGURE20_FILE",
@@ -78,8 +81,10 @@ def _play(
         video=out / f"{stem}.mp4",
         render=render,
         progress=progress,
+        replay=out / f"{stem}{REPLAY_SUFFIX}",
     )
     playback.report.write_json(out / f"{stem}.json")
+    page_from_file(out / f"{stem}{REPLAY_SUFFIX}", out / f"{stem}.html")
     return playback.report
 
 

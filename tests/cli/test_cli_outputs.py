@@ -41,10 +41,11 @@ def test_task_names_never_choose_the_folder(cli, tmp_path, monkeypatch, name):
     result = cli("play", str(task), "--no-video", "--quiet")
     assert result.code == 0, result.err
     written = {p for p in tmp_path.rglob("*") if p.is_file()} - written - {task}
-    assert len(written) == 1
-    (report,) = written
-    assert report.parent == tmp_path / "videos"
+    assert len(written) == 2  # the report and its replay data
+    report, replay = sorted(written, key=lambda p: p.suffix)
+    assert report.parent == replay.parent == tmp_path / "videos"
     assert report.suffix == ".json"
+    assert replay.name == report.with_suffix(".replay.npz").name
     assert ".." not in report.name
 
 

@@ -29,6 +29,7 @@ COMMANDS = [
     ("traj",),
     ("plan",),
     ("play",),
+    ("view",),
     ("rrr",),
     ("rrr", "ik"),
     ("rrr", "fk"),
@@ -86,7 +87,7 @@ def test_help_prints_usage_and_exits_zero(capsys, command, flag):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        ([], "required: {fk,ik,workspace,traj,plan,play,rrr,demo,env,dataset,sweep}"),
+        ([], "required: {fk,ik,workspace,traj,plan,play,view,rrr,demo,env,dataset,sweep}"),
         (["fk"], "required: Q1, Q2, Q3, Q4, Q5"),
         (["fk", "1", "2"], "required: Q3, Q4, Q5"),
         (["fk", "1", "2", "3", "4", "5", "6"], "unrecognized arguments: 6"),
@@ -96,6 +97,8 @@ def test_help_prints_usage_and_exits_zero(capsys, command, flag):
         (["traj", "a.toml", "b.toml"], "unrecognized arguments: b.toml"),
         (["play"], "required: task"),
         (["play", "a.toml", "b.toml"], "unrecognized arguments: b.toml"),
+        (["view"], "required: REPORT.json"),
+        (["view", "a.json", "b.json"], "unrecognized arguments: b.json"),
         (["rrr"], "required: {ik,fk,workspace,poses}"),
         (["rrr", "ik", "1", "2"], "required: ALPHA"),
         (["rrr", "ik", "1", "2", "3", "4"], "unrecognized arguments: 4"),
@@ -225,7 +228,13 @@ def test_out_names_a_file_and_out_dir_a_folder():
             if "--out-dir" in action.option_strings:
                 assert action.metavar == "DIR", command
                 writes_a_folder.add(command)
-    assert writes_a_file == {("workspace",), ("play",), ("rrr", "workspace"), ("rrr", "poses")}
+    assert writes_a_file == {
+        ("workspace",),
+        ("play",),
+        ("view",),
+        ("rrr", "workspace"),
+        ("rrr", "poses"),
+    }
     assert writes_a_folder == {("traj",), ("plan",), ("demo",), ("dataset",), ("sweep",)}
 
 

@@ -40,8 +40,12 @@ class ArmRun:
         render: RenderSettings,
         progress: ProgressFn | None,
         no_obstacle: bool = False,
+        replay: str | os.PathLike[str] | None = None,
     ) -> Playback:
-        """Play it in the task's scene (``no_obstacle``: without its obstacles)."""
+        """Play it in the task's scene (``no_obstacle``: without its obstacles).
+
+        ``replay``: where to save the run's replay data, or None.
+        """
         scene = self.task.scene.without_obstacles() if no_obstacle else self.task.scene
         return run_arm_trajectory(
             self.trajectory,
@@ -50,6 +54,7 @@ class ArmRun:
             video=video,
             render=render,
             progress=progress,
+            replay=replay,
         )
 
 

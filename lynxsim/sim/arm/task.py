@@ -13,6 +13,7 @@ from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.recording import ProgressFn, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
+from lynxsim.sim.replay import save_replay
 from lynxsim.sim.summary import Playback
 from lynxsim.traj import Trajectory
 
@@ -50,6 +51,7 @@ def run_arm_trajectory(
     render: RenderSettings | None = None,
     settle_s: float = 0.5,
     progress: ProgressFn | None = None,
+    replay: str | os.PathLike[str] | None = None,
 ) -> Playback:
     """Play a trajectory in the arm scene and optionally record it.
 
@@ -64,6 +66,7 @@ def run_arm_trajectory(
         render: Frame size, camera, quality and fps (defaults if None).
         settle_s: Hold time after the trajectory [s].
         progress: Called with the fraction done.
+        replay: Where to save the run's replay data (``RUN.replay.npz``), or None.
 
     Returns:
         The :class:`~lynxsim.sim.summary.Playback`.
@@ -78,9 +81,12 @@ def run_arm_trajectory(
         gripper_cmd=None if scene.cube is None else pick_and_place_gripper(trajectory.duration),
         progress=stepping,
     )
+    targets = np.array([p.position for p in tool_poses(trajectory.waypoints)])
     if video is not None:
-        targets = np.array([p.position for p in tool_poses(trajectory.waypoints)])
         render_log(model, playback.log, video, render or RenderSettings(), targets, rendering)
+    if replay is not None:
+        camera = (render or RenderSettings()).camera
+        save_replay(model, playback, replay, targets=targets, camera=camera)
     if progress is not None:
         progress(1.0)
     return playback

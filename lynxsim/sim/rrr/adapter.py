@@ -41,10 +41,20 @@ class RRRRun:
         render: RenderSettings,
         progress: ProgressFn | None,
         mode: int = HOME_MODE,
+        replay: str | os.PathLike[str] | None = None,
     ) -> Playback:
-        """Play it through the actuated joints, IK in working mode ``mode`` (0..7)."""
+        """Play it through the actuated joints, IK in working mode ``mode`` (0..7).
+
+        ``replay``: where to save the run's replay data, or None.
+        """
         return run_rrr_path(
-            self.path, task=self.task.name, mode=mode, video=video, render=render, progress=progress
+            self.path,
+            task=self.task.name,
+            mode=mode,
+            video=video,
+            render=render,
+            progress=progress,
+            replay=replay,
         )
 
 

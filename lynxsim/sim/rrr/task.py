@@ -12,6 +12,7 @@ from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
 from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
 from lynxsim.sim.render import RenderSettings
+from lynxsim.sim.replay import save_replay
 from lynxsim.sim.rrr.model import RRRIds
 from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.summary import Playback
@@ -33,6 +34,7 @@ def run_rrr_path(
     render: RenderSettings = DEFAULT_RRR_RENDER,
     settle_s: float = 0.5,
     progress: ProgressFn | None = None,
+    replay: str | os.PathLike[str] | None = None,
 ) -> Playback:
     """Play a platform path in the 3-RRR scene and optionally record it.
 
@@ -47,6 +49,7 @@ def run_rrr_path(
         render: Frame size, camera (``top`` or ``front``), quality and fps.
         settle_s: Hold time after the path [s].
         progress: Called with the fraction done.
+        replay: Where to save the run's replay data (``RUN.replay.npz``), or None.
 
     Returns:
         The :class:`~lynxsim.sim.summary.Playback` (report ``metrics``:
@@ -68,9 +71,11 @@ def run_rrr_path(
         settle_s=settle_s,
         on_step=progress_hook(path.duration + settle_s, float(model.opt.timestep), stepping),
     )
+    targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
     if video is not None:
-        targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
         render_log(model, playback.log, video, render, targets, rendering)
+    if replay is not None:
+        save_replay(model, playback, replay, targets=targets, camera=render.camera)
     if progress is not None:
         progress(1.0)
     return playback
