@@ -13,9 +13,9 @@ from lynxsim.arm.task import build_trajectory
 from lynxsim.errors import CommandLimitError, InvalidInputError
 from lynxsim.real.arm import arm_tool_points, load_arm_calibration
 from lynxsim.real.board import FRAME_S
+from lynxsim.real.deviation import board_motion, stream_deviation
 from lynxsim.real.protocol import GroupMove, parse_line
 from lynxsim.real.stream import StreamOptions, command_stream
-from lynxsim.real.deviation import board_motion, stream_deviation
 from lynxsim.tasks import load_task
 from lynxsim.traj import free_motion, quintic
 
@@ -45,7 +45,8 @@ def test_streamed_lines_every_period_with_t_the_period_end_at_the_final_pose():
     assert [s.pulse_us for s in commands[-1].targets] == list(expected)  # type: ignore[union-attr]
     assert [s.channel for s in commands[-1].targets] == list(CAL.channels)  # type: ignore[union-attr]
     approach = parse_line(stream.lines[0].text)
-    assert isinstance(approach, GroupMove) and approach.time_ms == 2000
+    assert isinstance(approach, GroupMove)
+    assert approach.time_ms == 2000
 
 
 def test_waypoint_moves_take_each_segments_time():
@@ -80,7 +81,8 @@ def test_a_move_over_the_speed_limit_is_refused():
     traj = quintic([START, END], durations=1.0)
     with pytest.raises(CommandLimitError, match="over its speed limit") as info:
         command_stream(traj, slow)
-    assert info.value.joint == "base" and info.value.quantity == "speed"
+    assert info.value.joint == "base"
+    assert info.value.quantity == "speed"
     assert info.value.value > info.value.limit
 
 
@@ -119,7 +121,8 @@ def test_streamed_deviation_is_below_a_chord_and_a_frame_of_motion():
     chord = np.abs(s.qdd).max(axis=0) * 0.1**2 / 8
     frame = np.abs(s.qd).max(axis=0) * FRAME_S
     assert (np.array(dev.joint_max_rad) <= chord + frame + QUANTUM_RAD).all()
-    assert dev.tool_max_m is not None and 0 < dev.tool_max_m < 0.05
+    assert dev.tool_max_m is not None
+    assert 0 < dev.tool_max_m < 0.05
 
 
 def test_board_motion_reaches_every_shipped_tasks_final_pulses():
