@@ -103,6 +103,7 @@ def _header(task: Task, twin: TwinRun, calibration: Calibration, version: str) -
 
 
 def _play(args: argparse.Namespace) -> int:
+    from lynxsim.cli.play import progress_bar
     from lynxsim.real.driver import Ssc32Link, play_stream
     from lynxsim.real.log import RunLogWriter
     from lynxsim.sim.arm.planning import task_trajectory
@@ -136,7 +137,11 @@ def _play(args: argparse.Namespace) -> int:
         version = link.version()
         say(f"board: {version} on {args.port} at {calibration.baud} baud")
         log = RunLogWriter(log_path, _header(task, twin, calibration, version))
-        result = play_stream(link, twin.stream, log)
+        update, close = progress_bar(f"{task.name} to {args.port}", args.quiet)
+        try:
+            result = play_stream(link, twin.stream, log, progress=update)
+        finally:
+            close()
     agree = "agree" if result.agrees else "DISAGREE"
     print(
         f"sent {result.lines_sent} lines, motion done at {result.end_s:.3f} s; final pulses "

@@ -41,6 +41,7 @@ __all__ = [
     "GripperCalibration",
     "JointCalibration",
     "load_calibration",
+    "parse_calibration",
 ]
 
 FloatArray = npt.NDArray[np.float64]
