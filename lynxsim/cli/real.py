@@ -39,14 +39,21 @@ _TWIN_EVERY = 10
 """The log keeps every this-th physics step of the twin's simulated joints (20 ms at 2 ms)."""
 
 
+def _require_arm(task: Task, what: str) -> None:
+    """Refuse a task whose poses are not the arm's (tool or joint poses), as the planner does."""
+    from lynxsim.traj import ArmPose, JointPose
+
+    if not all(isinstance(p, ArmPose | JointPose) for p in task.poses):
+        raise InvalidInputError(
+            f"{what} applies only to arm tasks; {task.source} is a task of robot {task.robot!r}"
+        )
+
+
 def _arm_task(path: Path) -> Task:
     from lynxsim.tasks import load_task
 
     task = load_task(path)
-    if task.robot != "arm":
-        raise InvalidInputError(
-            f"{path} is a task of robot {task.robot!r}; the SSC-32U tools drive the arm only"
-        )
+    _require_arm(task, "lynxsim real")
     return task
 
 
@@ -116,9 +123,10 @@ def _play(args: argparse.Namespace) -> int:
     options = _options(args)
     with about_task(args.task):
         trajectory = task_trajectory(task, args.type)
-        twin = run_twin(task, trajectory, calibration, options)
     log_path = args.log or output_path("logs", task.name, trajectory.kind.value, suffix=".jsonl")
     check_destination(log_path)
+    with about_task(args.task):
+        twin = run_twin(task, trajectory, calibration, options)
 
     def say(text: str) -> None:
         if not args.quiet:
@@ -221,8 +229,7 @@ def play_through_ssc32(args: argparse.Namespace, task: Task) -> int:
     from lynxsim.sim.arm.ssc32 import run_twin
     from lynxsim.sim.render import Quality, RenderSettings
 
-    if task.robot != "arm":
-        raise InvalidInputError(f"--controller ssc32 applies only to arm tasks; {args.task} is not")
+    _require_arm(task, "--controller ssc32")
     calibration = _calibration(args.calibration)
     with about_task(args.task):
         trajectory = task_trajectory(task, args.type)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from lynxsim.errors import DataFileError
+from lynxsim.errors import DataFileError, InvalidInputError
 from lynxsim.real.log import RunLog
 
 __all__ = ["JointComparison", "compare_measured", "read_measured"]
@@ -121,7 +121,7 @@ def compare_measured(
     """Each measured joint against the log's simulated run, at the measured times in its span.
 
     Raises:
-        DataFileError: No measured time inside the simulated run.
+        InvalidInputError: No measured time inside the simulated run.
     """
     twin = log.header["twin"]
     names = tuple(log.header["joint_names"])
@@ -129,11 +129,9 @@ def compare_measured(
     q_sim = np.radians(np.asarray(twin["q_deg"], dtype=float))
     inside = (t >= t_sim[0]) & (t <= t_sim[-1])
     if not inside.any():
-        raise DataFileError(
-            "measured",
-            "time_s",
-            f"no time inside the simulated run's {t_sim[0]:.2f}..{t_sim[-1]:.2f} s "
-            "(the log's clock)",
+        raise InvalidInputError(
+            f"no measured time inside the simulated run's {t_sim[0]:.2f}..{t_sim[-1]:.2f} s "
+            "(the log's clock: seconds from the first line sent)"
         )
     out = []
     for name, q in measured.items():
