@@ -226,3 +226,73 @@ def short(value: object) -> str:
 
 
 __all__ += ["short"]
+
+
+class DataFileError(LynxsimError, ValueError):
+    """A data file (calibration, serial log, measured angles) breaks its schema.
+
+    Attributes:
+        path: The file.
+        field: Where in it (``"joints.base.channel"``, ``"line 7"``), or ``None``
+            when the problem is the file as a whole.
+    """
+
+    def __init__(self, path: str, field: str | None, problem: str) -> None:
+        shown = path if path.isprintable() else repr(path)
+        where = f"{shown}: {field}" if field else shown
+        super().__init__(f"{where}: {problem}")
+        self.path = path
+        self.field = field
+
+
+class CalibrationFileError(DataFileError):
+    """A servo calibration file (TOML) is malformed or breaks its schema."""
+
+
+class SerialLinkError(LynxsimError, OSError):
+    """The serial port cannot be opened, vanished, or the board does not answer."""
+
+
+class BoardTimeoutError(SerialLinkError):
+    """The servo controller did not answer a query in time."""
+
+
+class ProtocolError(LynxsimError, ValueError):
+    """A servo-controller line or answer that the protocol does not define."""
+
+
+class CommandLimitError(LynxsimError, ValueError):
+    """A command stream would leave a joint's calibrated pulse range or exceed its speed.
+
+    Attributes:
+        joint: Name of the joint.
+        quantity: ``"pulse"`` or ``"speed"``.
+        time_s: When, from the start of the motion [s].
+        value: The offending value [us or us/s].
+        limit: The bound it breaks, in the same unit.
+    """
+
+    def __init__(
+        self, message: str, *, joint: str, quantity: str, time_s: float, value: float, limit: float
+    ) -> None:
+        super().__init__(message)
+        self.joint = joint
+        self.quantity = quantity
+        self.time_s = time_s
+        self.value = value
+        self.limit = limit
+
+
+class CollisionRefusedError(LynxsimError):
+    """A motion whose simulation collides, refused before anything is sent to hardware."""
+
+
+__all__ += [
+    "BoardTimeoutError",
+    "CalibrationFileError",
+    "CollisionRefusedError",
+    "CommandLimitError",
+    "DataFileError",
+    "ProtocolError",
+    "SerialLinkError",
+]

@@ -51,6 +51,7 @@ ALLOWED: dict[str, frozenset[str]] = {
     "plan": BASE | {"traj"},
     "arm": BASE | {"traj", "plan"},
     "rrr": BASE | {"traj"},
+    "real": BASE | {"traj", "arm", "real"},
     "tasks": BASE | {"traj"},
     "sim": _BELOW_SIM,
     "sim.arm": BASE | {"sim", "arm", "traj", "plan", "tasks"},

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 from types import FrameType
 from typing import Any, NoReturn
 
-from lynxsim.cli import arm, dataset, demo, env, plan, play, rrr, sweep, traj, view
+from lynxsim.cli import arm, dataset, demo, env, plan, play, real, rrr, sweep, traj, view
 from lynxsim.errors import LynxsimError
 
 __all__ = ["build_parser", "main", "run"]
@@ -64,7 +64,7 @@ def build_parser() -> argparse.ArgumentParser:
         "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
     )
     sub = parser.add_subparsers(required=True, parser_class=_OneLineParser)
-    for module in (arm, traj, plan, play, view, rrr, demo, env, dataset, sweep):
+    for module in (arm, traj, plan, play, view, rrr, demo, env, dataset, sweep, real):
         module.register(sub)
     return parser
 

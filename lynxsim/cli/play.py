@@ -145,6 +145,10 @@ def _play(args: argparse.Namespace) -> int:
 
     task = load_task(args.task)
     _check_flags(args, task)
+    if args.controller == "ssc32":
+        from lynxsim.cli.real import play_through_ssc32
+
+        return play_through_ssc32(args, task)
     adapter = sim_adapter(task.robot)
     options = {
         name: getattr(args, name) for name in _RUN_OPTIONS if getattr(args, name) is not None
@@ -198,6 +202,7 @@ def _print_run(
 def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``play`` sub-command."""
     from lynxsim.bounds import MAX_FPS, MIN_FPS
+    from lynxsim.cli.real import add_controller_flags
     from lynxsim.cli.units import bounded_float
 
     p = sub.add_parser(
@@ -255,4 +260,5 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     )
     p.add_argument("--json", action="store_true", help="print the report as JSON (SI units)")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
+    add_controller_flags(p)
     p.set_defaults(handler=_play)

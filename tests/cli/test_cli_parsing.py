@@ -39,6 +39,10 @@ COMMANDS = [
     ("env",),
     ("dataset",),
     ("sweep",),
+    ("real",),
+    ("real", "play"),
+    ("real", "emulate"),
+    ("real", "compare"),
 ]
 """Every (sub-)command, ``()`` for ``lynxsim`` itself."""
 
@@ -87,7 +91,7 @@ def test_help_prints_usage_and_exits_zero(capsys, command, flag):
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        ([], "required: {fk,ik,workspace,traj,plan,play,view,rrr,demo,env,dataset,sweep}"),
+        ([], "required: {fk,ik,workspace,traj,plan,play,view,rrr,demo,env,dataset,sweep,real}"),
         (["fk"], "required: Q1, Q2, Q3, Q4, Q5"),
         (["fk", "1", "2"], "required: Q3, Q4, Q5"),
         (["fk", "1", "2", "3", "4", "5", "6"], "unrecognized arguments: 6"),

@@ -21,15 +21,15 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
-from lynxsim.robots.rrr import path_from_task
-from lynxsim.sim.stepping.log import PlaybackLog
 
+from lynxsim.robots.rrr import path_from_task
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr.playback import start_model
 from lynxsim.sim.rrr.task import DEFAULT_RRR_RENDER, run_rrr_path
+from lynxsim.sim.stepping.log import PlaybackLog
 from lynxsim.sim.summary import Playback
 from lynxsim.tasks import load_task
 from lynxsim.web.page import page_from_file
