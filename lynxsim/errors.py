@@ -296,3 +296,14 @@ __all__ += [
     "ProtocolError",
     "SerialLinkError",
 ]
+
+
+class CapabilityError(InvalidInputError):
+    """A robot asked for something it cannot do (a checker, a plan, a real backend, ...).
+
+    The message names the robot and the capability; generic code raises it from a
+    robot record's fields, never from its name.
+    """
+
+
+__all__ += ["CapabilityError"]

@@ -32,6 +32,7 @@ BASE = frozenset(
         "random_scenes",
         "poses",
         "registry",
+        "run_options",
         "verdicts",
         "web",
     }

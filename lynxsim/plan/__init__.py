@@ -28,11 +28,13 @@ from lynxsim.plan.ompl_planners import PLANNERS, PlannerName
 from lynxsim.plan.oracle import ClearanceOracle
 from lynxsim.plan.potential import potential_field_segment
 from lynxsim.plan.progress import PlanProgress, ProgressCallback
+from lynxsim.plan.request import DEFAULT_MARGIN_M, PlanRequest
 from lynxsim.plan.segment import SegmentPlan, plan_segment
 from lynxsim.plan.shortcut import path_length, shorten_path
 from lynxsim.plan.timing import TimedMotion, TimedSegment, time_paths
 
 __all__ = [
+    "DEFAULT_MARGIN_M",
     "PLANNERS",
     "ClearanceOracle",
     "EdgeCheck",
@@ -40,6 +42,7 @@ __all__ = [
     "LocalMinimumError",
     "NoPathError",
     "PlanProgress",
+    "PlanRequest",
     "PlannedMotion",
     "PlannerName",
     "PlanningError",

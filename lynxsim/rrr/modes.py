@@ -33,8 +33,17 @@ import numpy.typing as npt
 
 from lynxsim.bounds import MAX_SAMPLES
 from lynxsim.errors import InvalidInputError, short
+from lynxsim.run_options import RunOption
 
-__all__ = ["HOME_MODE", "MODE_SIGNS", "N_MODES", "mode_index", "mode_label", "mode_signs"]
+__all__ = [
+    "HOME_MODE",
+    "MODE_OPTION",
+    "MODE_SIGNS",
+    "N_MODES",
+    "mode_index",
+    "mode_label",
+    "mode_signs",
+]
 
 N_MODES = 8
 """Number of working modes (two elbow branches for each of three legs)."""
@@ -42,6 +51,16 @@ HOME_MODE = 7
 """Working mode of the model's ``home`` pose and of runs by default: elbow signs - - -,
 the mode the university report draws (its ``arm.m`` takes the ``+`` root of its
 half-angle quadratic)."""
+
+MODE_OPTION = RunOption(
+    name="mode",
+    help=f"working mode of the inverse kinematics (default {HOME_MODE}, the report's)",
+    type=int,
+    default=HOME_MODE,
+    choices=tuple(range(N_MODES)),
+    metavar=f"0..{N_MODES - 1}",
+)
+"""The option of a 3-RRR run (``lynxsim play --mode``): its working mode."""
 
 MODE_SIGNS: npt.NDArray[np.int8] = np.array(
     [[-1 if (m >> leg) & 1 else 1 for leg in range(3)] for m in range(N_MODES)], dtype=np.int8

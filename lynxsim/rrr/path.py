@@ -172,6 +172,11 @@ class PlatformPath:
         return "quintic-spline" if self.through else "quintic"
 
     @property
+    def waypoint_names(self) -> tuple[str, ...]:
+        """The poses' names (:class:`~lynxsim.traj.motion.Motion`)."""
+        return self.names
+
+    @property
     def arc_length(self) -> float:
         """Length of the path in ``(x, y, r_p alpha)`` [m] (spline: by its knots)."""
         if self.through:

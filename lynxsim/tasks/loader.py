@@ -8,8 +8,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from lynxsim.errors import TaskFileError
-from lynxsim.registry import info, names
+from lynxsim.errors import InvalidInputError, TaskFileError
+from lynxsim.registry import discover, info, names
 from lynxsim.scene import Scene
 from lynxsim.tasks.pose_readers import POSE_READERS
 from lynxsim.tasks.reader import MAX_DESCRIPTION_CHARS, MAX_NAME_CHARS, FieldReader, is_text, show
@@ -27,6 +27,11 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
     r = FieldReader(path)
     top = r.table(data, "", _TOP_KEYS)
     robot = r.string(r.required(top, "robot", "robot"), "robot")
+    if robot not in names():  # an installed package may offer it (an entry point)
+        try:
+            discover(robot)
+        except InvalidInputError as exc:
+            raise r.fail("robot", str(exc)) from None
     if robot not in names():
         raise r.fail("robot", f"unknown robot {show(robot)}; expected one of: {', '.join(names())}")
     entry = info(robot)
@@ -66,7 +71,7 @@ def _parse(data: Mapping[str, Any], path: str, default_name: str) -> Task:
         pose_name = r.name(raw.get("name", f"P{i + 1}"), f"{field}.name")
         if any(p.name == pose_name for p in poses):
             raise r.fail(f"{field}.name", f"duplicate pose name {show(pose_name)}")
-        poses.append(read_pose(r, raw, field, pose_name))
+        poses.append(read_pose(r, raw, field, pose_name, entry.joints))
 
     durations: tuple[float, ...] | None = None
     if "segment_duration_s" in traj:

@@ -16,8 +16,10 @@ A robot's task poses become joints in its own room (the arm's:
 from lynxsim.traj.build import JOINT_KINDS, generate, parse_kind
 from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import WAYPOINT_KINDS, TrajectoryKind
+from lynxsim.traj.kinematics import Kinematics, ToolFn, ToolReadout
 from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.lspb import lspb
+from lynxsim.traj.motion import Motion
 from lynxsim.traj.polynomial import (
     cubic,
     cubic_coefficients,
@@ -36,8 +38,12 @@ __all__ = [
     "Durations",
     "JointBounds",
     "JointLimits",
+    "Kinematics",
+    "Motion",
     "PolynomialSegment",
     "Segment",
+    "ToolFn",
+    "ToolReadout",
     "Trajectory",
     "TrajectoryKind",
     "TrajectorySample",

@@ -271,6 +271,16 @@ class Trajectory:
         return float(self._times[-1])
 
     @property
+    def label(self) -> str:
+        """The type's name (:class:`~lynxsim.traj.motion.Motion`): ``kind.value``."""
+        return self.kind.value
+
+    @property
+    def waypoint_names(self) -> tuple[str, ...]:
+        """The waypoints' names (:class:`~lynxsim.traj.motion.Motion`)."""
+        return self.waypoints.names
+
+    @property
     def waypoint_times(self) -> FloatArray:
         """When the trajectory passes each waypoint, shape (N,) [s], from 0 to the duration."""
         return self._times

@@ -21,7 +21,7 @@ from lynxsim.arm.motion.generators import (
     ruckig_trajectory,
 )
 from lynxsim.arm.motion.lipschitz import HAND_EXTENT_M, arm_lipschitz, joint_radii
-from lynxsim.arm.motion.space import ARM_BOUNDS, ARM_LIMITS, joint_bounds
+from lynxsim.arm.motion.space import ARM_BOUNDS, ARM_KINEMATICS, ARM_LIMITS, arm_tool, joint_bounds
 from lynxsim.arm.motion.waypoints import (
     ArmWaypoints,
     ArmWaypointsLike,
@@ -32,6 +32,7 @@ from lynxsim.poses import ArmPose, JointPose
 
 __all__ = [
     "ARM_BOUNDS",
+    "ARM_KINEMATICS",
     "ARM_LIMITS",
     "HAND_EXTENT_M",
     "ArmPose",
@@ -41,6 +42,7 @@ __all__ = [
     "LineSegment",
     "arm_joints",
     "arm_lipschitz",
+    "arm_tool",
     "build_trajectory",
     "cartesian_line",
     "cubic",

@@ -15,7 +15,6 @@ runs beside it and :class:`TwinComparison` gives the difference.
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -23,23 +22,34 @@ import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, tool_pose
 from lynxsim.arm.motion import tool_poses
-from lynxsim.real.arm import arm_tool_points
+from lynxsim.inputs import instance
+from lynxsim.real.arm import arm_tool_points, load_arm_calibration
 from lynxsim.real.calibration import Calibration
-from lynxsim.real.deviation import BoardMotion, StreamDeviation, board_motion, stream_deviation
-from lynxsim.real.stream import CommandStream, StreamOptions, command_stream
+from lynxsim.real.deviation import BoardMotion, board_motion, stream_deviation
+from lynxsim.real.stream import StreamOptions, command_stream
+from lynxsim.sim.adapter import RealBackend
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_binding, play_arm
 from lynxsim.sim.arm.task import pick_and_place_gripper
 from lynxsim.sim.recording import ProgressFn, render_log
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.report import RunReport
 from lynxsim.sim.stepping.commands import physics_grid
 from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.sim.summary import Playback, summarize
+from lynxsim.sim.twin import TwinComparison, TwinRun
 from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory
+from lynxsim.traj.motion import Motion
 
-__all__ = ["TwinComparison", "TwinRun", "dead_band", "run_twin", "servo_targets"]
+__all__ = [
+    "BACKEND",
+    "ArmSsc32",
+    "TwinComparison",
+    "TwinRun",
+    "dead_band",
+    "run_twin",
+    "servo_targets",
+]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -76,79 +86,6 @@ def servo_targets(motion: BoardMotion, calibration: Calibration, t: FloatArray) 
     k = np.searchsorted(motion.time_s, t + 1e-9, side="right") - 1
     result: FloatArray = q[np.clip(k, 0, len(q) - 1)]
     return result
-
-
-@dataclass(frozen=True)
-class TwinComparison:
-    """The digital twin's run against the ideal playback of the same trajectory.
-
-    Attributes:
-        ideal: Report of the ideal playback (targets updated every physics step).
-        twin: Report of the run through the board and the servos' dead bands.
-        deviation: The board's interpolation against the trajectory.
-    """
-
-    ideal: RunReport
-    twin: RunReport
-    deviation: StreamDeviation
-
-    @property
-    def extra_tool_max_error_m(self) -> float:
-        """Twin's largest tool tracking error minus the ideal's [m]."""
-        return self.twin.tool_max_error_m - self.ideal.tool_max_error_m
-
-    @property
-    def extra_tool_rms_error_m(self) -> float:
-        """Twin's RMS tool tracking error minus the ideal's [m]."""
-        return self.twin.tool_rms_error_m - self.ideal.tool_rms_error_m
-
-    @property
-    def same_verdicts(self) -> bool:
-        """Whether both runs collide alike: the same verdict and the same obstacles hit."""
-        hit = [{o.name for o in r.obstacles if o.collided} for r in (self.ideal, self.twin)]
-        return self.ideal.collided == self.twin.collided and hit[0] == hit[1]
-
-    def lines(self) -> list[str]:
-        """The comparison as readable lines (mm)."""
-        verdict = {True: "collides", False: "clear"}
-        return [
-            "ssc32 twin vs ideal playback: tool error max "
-            f"{self.twin.tool_max_error_m * 1e3:.2f} mm "
-            f"(ideal {self.ideal.tool_max_error_m * 1e3:.2f} mm, extra "
-            f"{self.extra_tool_max_error_m * 1e3:+.2f} mm), RMS "
-            f"{self.twin.tool_rms_error_m * 1e3:.2f} mm (extra "
-            f"{self.extra_tool_rms_error_m * 1e3:+.2f} mm)",
-            f"verdicts: ideal {verdict[self.ideal.collided]}, twin {verdict[self.twin.collided]}"
-            + ("" if self.same_verdicts else "  (THEY DIFFER)"),
-        ]
-
-
-@dataclass(frozen=True)
-class TwinRun:
-    """A trajectory's stream, board motion, ideal and twin playbacks.
-
-    Attributes:
-        stream: The command stream.
-        motion: What the board sends.
-        ideal: The ideal playback.
-        twin: The twin's playback.
-        comparison: The two compared.
-    """
-
-    stream: CommandStream
-    motion: BoardMotion
-    ideal: Playback
-    twin: Playback
-    comparison: TwinComparison
-
-    def simulated_joints(self) -> tuple[FloatArray, FloatArray]:
-        """The twin's simulated joints on the stream's clock: times (S,) [s], joints (S, n) [rad].
-
-        The stream's clock starts when its first line is sent; the motion starts
-        :attr:`BoardMotion.latency_s` later.
-        """
-        log = self.twin.log
-        return log.time_s + self.motion.latency_s, log.q
 
 
 def run_twin(
@@ -210,3 +147,46 @@ def run_twin(
     return TwinRun(
         stream, motion, ideal, twin, TwinComparison(ideal.report, twin.report, deviation)
     )
+
+
+class ArmSsc32:
+    """The arm's real backend (:class:`~lynxsim.sim.adapter.RealBackend`): an SSC-32U.
+
+    Its calibration is :func:`lynxsim.real.arm.load_arm_calibration`'s, its twin
+    :func:`run_twin`.
+    """
+
+    @property
+    def controller(self) -> str:
+        """The SSC-32U servo controller: ``"ssc32"``."""
+        return "ssc32"
+
+    def calibration(self, path: str | os.PathLike[str] | None) -> Calibration:
+        """Read an arm calibration file (None: the shipped one)."""
+        return load_arm_calibration(path)
+
+    def twin(
+        self,
+        task: Task,
+        motion: Motion,
+        calibration: Calibration,
+        options: StreamOptions | None = None,
+        *,
+        video: str | os.PathLike[str] | None = None,
+        render: RenderSettings | None = None,
+        progress: ProgressFn | None = None,
+    ) -> TwinRun:
+        """Play an arm task's trajectory ideally and through the board (:func:`run_twin`)."""
+        return run_twin(
+            task,
+            instance(motion, Trajectory, "motion"),
+            calibration,
+            options,
+            video=video,
+            render=render,
+            progress=progress,
+        )
+
+
+BACKEND: RealBackend = ArmSsc32()
+"""The real backend the arm's record names."""
