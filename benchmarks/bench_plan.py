@@ -41,8 +41,8 @@ from lynxsim.plan import (
 from lynxsim.random_scenes import random_obstacles
 from lynxsim.scene import TABLE, Scene
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.planning import DEFAULT_MARGIN_M, CheckerOracle
 from lynxsim.sim.arm.playback import arm_checker, play_arm
+from lynxsim.sim.planning import DEFAULT_MARGIN_M, CheckerOracle
 from lynxsim.traj import TrajectoryKind
 
 PLANNERS = ("RRTConnect", "BITstar", "potential")

@@ -26,7 +26,7 @@ from lynxsim.envs.control import TargetStatus, ToolSpaceController
 from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
 from lynxsim.plan import PlanningError, plan_segment
 from lynxsim.plan.subspace import JointSubspace
-from lynxsim.sim.arm.planning import DEFAULT_MARGIN_M, CheckerOracle
+from lynxsim.sim.planning import DEFAULT_MARGIN_M, CheckerOracle
 
 __all__ = [
     "ARRIVED_M",

@@ -14,15 +14,10 @@ from lynxsim.arm.motion import arm_lipschitz, joint_radii
 from lynxsim.plan import StartInCollisionError
 from lynxsim.scene import Cylinder
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
-from lynxsim.sim.arm.planning import (
-    DEFAULT_MARGIN_M,
-    PLANNING_CAP_M,
-    CheckerOracle,
-    plan_task,
-    task_trajectory,
-)
+from lynxsim.sim.arm.planning import plan_task, task_trajectory
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.task import run_arm_trajectory
+from lynxsim.sim.planning import DEFAULT_MARGIN_M, PLANNING_CAP_M, CheckerOracle
 from lynxsim.tasks import load_task
 from lynxsim.traj import TrajectoryKind
 from tests.helpers import assert_close

@@ -9,9 +9,7 @@ names the rest of lynxsim refers to.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import NamedTuple
 
 import mujoco
 import numpy as np
@@ -19,14 +17,31 @@ import numpy as np
 from lynxsim.arm import FRAME_NAMES, LYNX_ARM
 from lynxsim.errors import InvalidInputError
 from lynxsim.resources import model_path
-from lynxsim.scene import REPORT_SCENE, Box, Cylinder, Obstacle, Scene
+from lynxsim.scene import REPORT_SCENE, Scene
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups
-from lynxsim.sim.stepping.sensors import add_recording_sensors
+from lynxsim.sim.joint_robot import (
+    JointRobotNames,
+    TableParts,
+    load_joint_scene,
+    robot_geoms,
+)
+from lynxsim.sim.scene_build import (
+    CUBE_BODY,
+    CUBE_GEOM,
+    FLOOR_GEOM,
+    OBSTACLE_CLASS,
+    TABLE_GEOM,
+    ObstacleGeom,
+    build_scene,
+    obstacle_geom,
+    table_top_z,
+)
 
 __all__ = [
     "ARM_ACTUATORS",
     "ARM_JOINTS",
+    "ARM_NAMES",
     "ARM_ROOT_BODY",
     "ARM_XML",
     "COLLISION_GROUP",
@@ -73,87 +88,21 @@ FRAME_SITES: tuple[str, ...] = FRAME_NAMES
 """Sites at the origins of the DH frames, named as :data:`lynxsim.arm.FRAME_NAMES`."""
 TOOL_SITE = "tool"
 """Site at the report's tool point; its z axis is the tool axis."""
-OBSTACLE_CLASS = "obstacle"
-"""Default class of the obstacle geoms (material, contacts)."""
-TABLE_GEOM = "table"
-FLOOR_GEOM = "floor"
-CUBE_BODY = "cube"
-CUBE_GEOM = "cube"
 HOME_KEY = "home"
 VISUAL_GROUP = 2
 """Geom group of the visual geoms (MuJoCo Menagerie convention)."""
 COLLISION_GROUP = 3
 """Geom group of the collision geoms (MuJoCo Menagerie convention)."""
-
-
-def table_top_z(spec: mujoco.MjSpec) -> float:
-    """Height of the table top in the base frame [m] (negative: below z = 0).
-
-    Raises:
-        InvalidInputError: If the spec has no table geom.
-    """
-    table = spec.geom(TABLE_GEOM)
-    if table is None:
-        raise InvalidInputError(f"the spec has no geom named {TABLE_GEOM!r}")
-    return float(table.pos[2] + table.size[2])
-
-
-class ObstacleGeom(NamedTuple):
-    """An obstacle as a MuJoCo geom: what the spec and the slots write.
-
-    Attributes:
-        type: The geom type (a :class:`mujoco.mjtGeom` value as an int).
-        size: MuJoCo's size triple (half extents, radius, half height) [m].
-        pos: Centre of the geom in the world (x, y, z) [m].
-        quat: Orientation (w, x, y, z).
-    """
-
-    type: int
-    size: tuple[float, float, float]
-    pos: tuple[float, float, float]
-    quat: tuple[float, float, float, float]
-
-
-def obstacle_geom(obstacle: Obstacle) -> ObstacleGeom:
-    """The geom of an obstacle: standing obstacles are centred half their height up."""
-    x, y, z = obstacle.position
-    upright = (1.0, 0.0, 0.0, 0.0)
-    if isinstance(obstacle, Cylinder):
-        half = 0.5 * obstacle.height
-        return ObstacleGeom(
-            int(mujoco.mjtGeom.mjGEOM_CYLINDER),
-            (obstacle.radius, half, 0.0),
-            (x, y, z + half),
-            upright,
-        )
-    if isinstance(obstacle, Box):
-        half_z = 0.5 * obstacle.size[2]
-        yaw = 0.5 * obstacle.yaw
-        return ObstacleGeom(
-            int(mujoco.mjtGeom.mjGEOM_BOX),
-            (0.5 * obstacle.size[0], 0.5 * obstacle.size[1], half_z),
-            (x, y, z + half_z),
-            (math.cos(yaw), 0.0, 0.0, math.sin(yaw)),
-        )
-    return ObstacleGeom(
-        int(mujoco.mjtGeom.mjGEOM_SPHERE), (obstacle.radius, 0.0, 0.0), (x, y, z), upright
-    )
-
-
-def _add_obstacle(spec: mujoco.MjSpec, obstacle: Obstacle) -> None:
-    if spec.geom(obstacle.name) is not None or spec.body(obstacle.name) is not None:
-        raise InvalidInputError(
-            f"obstacle name {obstacle.name!r} is taken by a part of the arm's scene; rename it"
-        )
-    geom = obstacle_geom(obstacle)
-    spec.worldbody.add_geom(
-        spec.find_default(OBSTACLE_CLASS),
-        name=obstacle.name,
-        type=mujoco.mjtGeom(geom.type),
-        size=list(geom.size),
-        pos=list(geom.pos),
-        quat=list(geom.quat),
-    )
+ARM_NAMES = JointRobotNames(
+    root_body=ARM_ROOT_BODY,
+    joints=ARM_JOINTS,
+    tool_site=TOOL_SITE,
+    actuators=ARM_ACTUATORS,
+    collision_group=COLLISION_GROUP,
+    gripper_actuator=GRIPPER_ACTUATOR,
+)
+"""The arm as a joint robot of the table scene (:mod:`lynxsim.sim.joint_robot`); the
+table, obstacles and cube carry the names of :mod:`lynxsim.sim.scene_build`."""
 
 
 def load_arm_spec(scene: Scene = REPORT_SCENE) -> mujoco.MjSpec:
@@ -170,25 +119,7 @@ def load_arm_spec(scene: Scene = REPORT_SCENE) -> mujoco.MjSpec:
     """
     if not isinstance(scene, Scene):
         raise InvalidInputError(f"scene must be a lynxsim.scene.Scene, got {scene!r}")
-    spec = mujoco.MjSpec.from_file(str(model_path(SCENE_XML)))
-    table = spec.geom(TABLE_GEOM)
-    t = scene.table
-    table.size = [0.5 * t.size[0], 0.5 * t.size[1], 0.5 * t.thickness]
-    table.pos = [t.center[0], t.center[1], t.top_z - 0.5 * t.thickness]
-    for obstacle in scene.obstacles:
-        _add_obstacle(spec, obstacle)
-    body = spec.body(CUBE_BODY)
-    if scene.cube is None:
-        spec.delete(body)
-    else:
-        c = scene.cube
-        body.pos = list(c.position)
-        body.quat = [math.cos(0.5 * c.yaw), 0.0, 0.0, math.sin(0.5 * c.yaw)]
-        geom = spec.geom(CUBE_GEOM)
-        geom.size = [0.5 * c.size] * 3
-        geom.mass = c.mass
-        geom.friction = [c.friction, geom.friction[1], geom.friction[2]]
-    return spec
+    return build_scene(mujoco.MjSpec.from_file(str(model_path(SCENE_XML))), scene, owner="arm")
 
 
 def load_arm_scene(scene: Scene = REPORT_SCENE) -> mujoco.MjModel:
@@ -200,10 +131,11 @@ def load_arm_scene(scene: Scene = REPORT_SCENE) -> mujoco.MjModel:
 
     Returns:
         The compiled model (2 ms timestep, implicitfast).
+
+    Raises:
+        InvalidInputError: See :func:`load_arm_spec`.
     """
-    spec = load_arm_spec(scene)
-    plain = spec.compile()
-    return add_recording_sensors(spec, plain, SceneIds.from_model(plain).binding(plain))
+    return load_joint_scene(model_path(SCENE_XML), ARM_NAMES, scene, owner="arm")
 
 
 def load_arm_model() -> mujoco.MjModel:
@@ -216,11 +148,6 @@ def _id(model: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
     if index < 0:
         raise InvalidInputError(f"the model has no {kind.name[6:].lower()} named {name!r}")
     return index
-
-
-def _optional_id(model: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int | None:
-    index = int(mujoco.mj_name2id(model, kind, name))
-    return None if index < 0 else index
 
 
 @dataclass(frozen=True)
@@ -269,28 +196,10 @@ class SceneIds:
             InvalidInputError: If an arm element is missing (names it).
         """
         obj = mujoco.mjtObj
-        joint, site, geom, actuator = (
-            obj.mjOBJ_JOINT,
-            obj.mjOBJ_SITE,
-            obj.mjOBJ_GEOM,
-            obj.mjOBJ_ACTUATOR,
-        )
+        joint, site, actuator = obj.mjOBJ_JOINT, obj.mjOBJ_SITE, obj.mjOBJ_ACTUATOR
         arm_joints = tuple(_id(model, joint, n) for n in ARM_JOINTS)
         root = _id(model, mujoco.mjtObj.mjOBJ_BODY, ARM_ROOT_BODY)
-        table = _optional_id(model, geom, TABLE_GEOM)
-        floor = _optional_id(model, geom, FLOOR_GEOM)
-        support = {table, floor}
-        colliding = (np.asarray(model.geom_contype) != 0) | (
-            np.asarray(model.geom_conaffinity) != 0
-        )
-        world = set(np.flatnonzero((np.asarray(model.geom_bodyid) == 0) & colliding).tolist())
-        cube_joint = _optional_id(model, joint, CUBE_BODY)
-        arm_geoms = tuple(
-            g
-            for g in range(model.ngeom)
-            if model.geom_group[g] == COLLISION_GROUP
-            and model.body_rootid[model.geom_bodyid[g]] == model.body_rootid[root]
-        )
+        table = TableParts.from_model(model)
         return cls(
             arm_joints=arm_joints,
             arm_qpos=tuple(int(model.jnt_qposadr[j]) for j in arm_joints),
@@ -300,30 +209,20 @@ class SceneIds:
             finger_joints=tuple(_id(model, joint, n) for n in FINGER_JOINTS),
             frame_sites=tuple(_id(model, site, n) for n in FRAME_SITES),
             tool_site=_id(model, site, TOOL_SITE),
-            arm_collision_geoms=arm_geoms,
-            obstacle_geoms=tuple(g for g in range(model.ngeom) if g in world and g not in support),
-            cube_qpos=None if cube_joint is None else int(model.jnt_qposadr[cube_joint]),
-            table_geom=table,
-            floor_geom=floor,
-            cube_geom=_optional_id(model, geom, CUBE_GEOM),
+            arm_collision_geoms=robot_geoms(model, root, COLLISION_GROUP),
+            obstacle_geoms=table.obstacle_geoms,
+            cube_qpos=table.cube_qpos,
+            table_geom=table.table_geom,
+            floor_geom=table.floor_geom,
+            cube_geom=table.cube_geom,
         )
 
     def collision_groups(self, model: mujoco.MjModel) -> CollisionGroups:
         """The collision definition of this scene (:mod:`lynxsim.sim.collision`)."""
-        mask = np.zeros(model.ngeom, dtype=bool)
-        robot, payload, support = mask.copy(), mask.copy(), mask.copy()
-        robot[list(self.arm_collision_geoms)] = True
-        if self.cube_geom is not None:
-            payload[self.cube_geom] = True
-        support[[g for g in (self.table_geom, self.floor_geom) if g is not None]] = True
-        obstacles = np.asarray(self.obstacle_geoms, dtype=np.intp)
-        return CollisionGroups(
-            robot=robot,
-            payload=payload,
-            support=support,
-            obstacle_geoms=obstacles,
-            obstacle_names=tuple(model.geom(g).name for g in self.obstacle_geoms),
+        table = TableParts(
+            self.table_geom, self.floor_geom, self.cube_geom, self.cube_qpos, self.obstacle_geoms
         )
+        return table.groups(model, self.arm_collision_geoms)
 
     def binding(self, model: mujoco.MjModel) -> RobotBinding:
         """What a playback drives and watches in this scene (or the robot alone)."""

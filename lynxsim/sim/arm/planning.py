@@ -1,8 +1,9 @@
-"""Planning an arm task around its scene: the collision checker as the planner's world.
+"""Planning an arm task around its scene (the arm's side of :mod:`lynxsim.sim.planning`).
 
-:mod:`lynxsim.plan` is pure; here the arm's MuJoCo scene answers its clearance
-questions (:class:`CheckerOracle`), the task's poses become goal sets (every
-valid IK branch of a pose is a goal; the planner picks), and the result is an
+The task's poses become the arm's planning problem
+(:func:`lynxsim.arm.motion.planning.arm_plan_request`: every valid IK branch of
+a pose is a goal; the planner picks); the arm's scene answers the clearance
+questions (:func:`~lynxsim.sim.arm.playback.arm_checker`); the result is an
 ordinary :class:`~lynxsim.traj.Trajectory` of kind ``planned``::
 
     motion = plan_task(load_task("tasks/obstacle_avoidance.toml"), seed=0)
@@ -14,79 +15,19 @@ before the motion and releases after it), so it counts as part of the robot.
 
 from __future__ import annotations
 
-import itertools
-
-import numpy as np
-import numpy.typing as npt
-
-from lynxsim.arm import LYNX_ARM, ik
-from lynxsim.arm.motion import (
-    ARM_BOUNDS,
-    ARM_LIMITS,
-    arm_lipschitz,
-    build_trajectory,
-    resolve_waypoints,
-)
+from lynxsim.arm.motion import build_trajectory
+from lynxsim.arm.motion.planning import arm_plan_request
 from lynxsim.errors import InvalidInputError
-from lynxsim.plan import (
-    PlannedMotion,
-    PlannerName,
-    ProgressCallback,
-    plan_through,
-)
+from lynxsim.plan import PlannedMotion, PlannerName, ProgressCallback
 from lynxsim.poses import ArmPose, JointPose
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker
-from lynxsim.sim.collision import CollisionChecker
+from lynxsim.sim.planning import DEFAULT_MARGIN_M, plan_request
 from lynxsim.tasks import Task
 from lynxsim.traj import Trajectory, TrajectoryKind
 from lynxsim.traj.build import parse_kind
 
-__all__ = ["DEFAULT_MARGIN_M", "PLANNING_CAP_M", "CheckerOracle", "plan_task", "task_trajectory"]
-
-FloatArray = npt.NDArray[np.float64]
-
-DEFAULT_MARGIN_M = 0.01
-"""Clearance every planned configuration keeps from every obstacle [m]."""
-PLANNING_CAP_M = 0.15
-"""Clearance cap of the planner's world [m] (see :class:`CheckerOracle`)."""
-
-
-class CheckerOracle:
-    """A :class:`~lynxsim.sim.collision.CollisionChecker` as the planner's world.
-
-    The clearance of a joint vector is its smallest distance to any obstacle
-    [m]; an obstacle, self or table hit reads as ``-inf`` (the table is no
-    obstacle for the verdicts of a run, but a plan that touches it is no plan).
-
-    Args:
-        checker: The arm's checker (:func:`~lynxsim.sim.arm.playback.arm_checker`).
-        cap_m: Clearances above this read as it [m]: the planner steps at most
-            ``cap / L`` along an edge per check, and far geoms cost nothing.
-    """
-
-    def __init__(self, checker: CollisionChecker, cap_m: float = PLANNING_CAP_M) -> None:
-        self._checker = checker
-        self._cap = cap_m
-        self.n_joints = checker.n_joints
-
-    def clearance(self, q: FloatArray, *, grasped: bool) -> FloatArray:
-        """Smallest clearance of each joint vector, (N, n) -> (N,) [m], at most the cap."""
-        return self._checker.min_clearance(q, grasped=grasped, cap=self._cap)
-
-
-def _goals(pose: ArmPose, resolved: FloatArray) -> FloatArray:
-    """Every valid IK branch of a pose, (K, 5) [rad], clipped into the joint ranges.
-
-    ``resolved`` is the pose's joints as every other trajectory type reaches it
-    (its roll fills in a pose without one); joint-space poses have that one goal.
-    """
-    result = ik(np.asarray(pose.position, dtype=float), pose.pitch, float(resolved[4]))
-    branches = result.candidates[result.valid] if result.ok else resolved[None]
-    if not np.any(np.all(np.isclose(branches, resolved, atol=1e-9), axis=1)):
-        branches = np.vstack([resolved[None], branches])
-    clipped: FloatArray = np.clip(branches, LYNX_ARM.q_min, LYNX_ARM.q_max)
-    return clipped
+__all__ = ["plan_task", "task_trajectory"]
 
 
 def plan_task(
@@ -124,35 +65,14 @@ def plan_task(
     poses = [p for p in task.poses if isinstance(p, ArmPose | JointPose)]
     if len(poses) != len(task.poses):
         raise InvalidInputError(f"task {task.name!r} is for robot {task.robot!r}, not the arm")
-    waypoints = resolve_waypoints(poses)
-    names = [p.name for p in waypoints.poses]
-    start = np.clip(waypoints.q[0], LYNX_ARM.q_min, LYNX_ARM.q_max)
-    goal_sets = [
-        waypoints.q[i][None]
-        if isinstance(pose, JointPose)
-        else _goals(waypoints.poses[i], waypoints.q[i])
-        for i, pose in enumerate(poses)
-        if i > 0
-    ]
-    oracle = CheckerOracle(arm_checker(load_arm_scene(task.scene)))
-    return plan_through(
-        goal_sets,
-        start,
-        oracle,
-        [task.scene.cube is not None] * len(goal_sets),
-        LYNX_ARM.q_min,
-        LYNX_ARM.q_max,
-        lipschitz=arm_lipschitz(),
-        margin_m=margin_m,
+    return plan_request(
+        arm_plan_request(poses, grasped=task.scene.cube is not None),
+        arm_checker(load_arm_scene(task.scene)),
         planner=planner,
-        time_limit_s=time_limit_s,
+        margin_m=margin_m,
         seed=seed,
-        labels=[f"{a} -> {b}" for a, b in itertools.pairwise(names)],
-        bounds=ARM_BOUNDS,
-        limits=ARM_LIMITS,
-        kind=TrajectoryKind.PLANNED,
+        time_limit_s=time_limit_s,
         progress=progress,
-        pose_names=names,
     )
 
 

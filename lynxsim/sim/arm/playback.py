@@ -5,24 +5,30 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import mujoco
+import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import tool_pose
 from lynxsim.sim.arm.model import SceneIds
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionChecker
-from lynxsim.sim.stepping.commands import physics_grid
+from lynxsim.sim.joint_playback import play_joints
 from lynxsim.sim.stepping.log import ProgressFn, StepHook
-from lynxsim.sim.stepping.rollout import rollout
-from lynxsim.sim.summary import Playback, summarize
+from lynxsim.sim.summary import Playback
 from lynxsim.traj import Trajectory
 
-__all__ = ["arm_binding", "arm_checker", "play_arm"]
+__all__ = ["arm_binding", "arm_checker", "arm_tool_points", "play_arm"]
 
 
 def arm_binding(model: mujoco.MjModel) -> RobotBinding:
     """What the playback drives and watches in an arm scene (or the robot alone)."""
     return SceneIds.from_model(model).binding(model)
+
+
+def arm_tool_points(q: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """Tool points of joint vectors, (T, 5) [rad] -> (T, 3) [m] (the analytic FK)."""
+    points: npt.NDArray[np.float64] = tool_pose(q).position
+    return points
 
 
 def arm_checker(model: mujoco.MjModel, base_qpos: npt.ArrayLike | None = None) -> CollisionChecker:
@@ -52,7 +58,8 @@ def play_arm(
 ) -> Playback:
     """Play an arm trajectory through the position actuators, targets updated every step.
 
-    The commanded tool point is the analytic FK of the commanded joints.
+    The commanded tool point is the analytic FK of the commanded joints
+    (:func:`lynxsim.sim.joint_playback.play_joints` with the arm's binding).
 
     Args:
         model: An arm scene (see :func:`lynxsim.sim.arm.model.load_arm_scene`).
@@ -68,20 +75,15 @@ def play_arm(
     Returns:
         The :class:`~lynxsim.sim.summary.Playback` (report and log).
     """
-    data = mujoco.MjData(model) if data is None else data
-    t = physics_grid(trajectory.duration, float(model.opt.timestep))
-    q_cmd = trajectory.sample(t).q
-    log = rollout(
+    return play_joints(
         model,
-        data,
         arm_binding(model),
-        q_cmd,
-        tool_pose(q_cmd).position,
+        trajectory,
+        arm_tool_points,
         task=task,
-        trajectory=trajectory.kind.value,
+        data=data,
         settle_s=settle_s,
         gripper_cmd=gripper_cmd,
         on_step=on_step,
         progress=progress,
     )
-    return Playback(report=summarize(log), log=log)

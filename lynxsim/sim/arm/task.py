@@ -6,18 +6,27 @@ import os
 from collections.abc import Callable
 
 import numpy as np
+import numpy.typing as npt
 
 from lynxsim.arm.motion import tool_poses
 from lynxsim.scene import REPORT_SCENE, Scene
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.playback import play_arm
-from lynxsim.sim.recording import ProgressFn, render_log, split_progress
+from lynxsim.sim.arm.playback import arm_binding, arm_tool_points
+from lynxsim.sim.joint_playback import run_joints
+from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.replay import save_replay
 from lynxsim.sim.summary import Playback
 from lynxsim.traj import Trajectory
 
-__all__ = ["GRIPPER_CLOSED_M", "GRIPPER_OPEN_M", "pick_and_place_gripper", "run_arm_trajectory"]
+__all__ = [
+    "GRIPPER_CLOSED_M",
+    "GRIPPER_OPEN_M",
+    "arm_targets",
+    "pick_and_place_gripper",
+    "run_arm_trajectory",
+]
+
+FloatArray = npt.NDArray[np.float64]
 
 GRIPPER_OPEN_M = 0.03
 """Gripper opening when open [m] (the Lynxmotion gripper's full opening)."""
@@ -42,6 +51,11 @@ def pick_and_place_gripper(duration_s: float) -> Callable[[float], float]:
     return opening
 
 
+def arm_targets(trajectory: Trajectory) -> FloatArray:
+    """The tool points of a trajectory's waypoints, (N, 3) [m]: what its video and replay mark."""
+    return np.array([p.position for p in tool_poses(trajectory.waypoints)])
+
+
 def run_arm_trajectory(
     trajectory: Trajectory,
     *,
@@ -56,7 +70,7 @@ def run_arm_trajectory(
     """Play a trajectory in the arm scene and optionally record it.
 
     With a cube in the scene, the gripper grips before the motion and releases
-    after it.
+    after it (:func:`lynxsim.sim.joint_playback.run_joints` with the arm's parts).
 
     Args:
         trajectory: The joint trajectory.
@@ -72,21 +86,17 @@ def run_arm_trajectory(
         The :class:`~lynxsim.sim.summary.Playback`.
     """
     model = load_arm_scene(scene)
-    stepping, rendering = split_progress(progress, video is not None)
-    playback = play_arm(
+    return run_joints(
         model,
+        arm_binding(model),
         trajectory,
+        arm_tool_points,
         task=task,
+        targets=arm_targets(trajectory),
+        render=render or RenderSettings(),
+        video=video,
         settle_s=settle_s,
         gripper_cmd=None if scene.cube is None else pick_and_place_gripper(trajectory.duration),
-        progress=stepping,
+        progress=progress,
+        replay=replay,
     )
-    targets = np.array([p.position for p in tool_poses(trajectory.waypoints)])
-    if video is not None:
-        render_log(model, playback.log, video, render or RenderSettings(), targets, rendering)
-    if replay is not None:
-        camera = (render or RenderSettings()).camera
-        save_replay(model, playback, replay, targets=targets, camera=camera)
-    if progress is not None:
-        progress(1.0)
-    return playback

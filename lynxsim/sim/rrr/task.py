@@ -7,19 +7,16 @@ import os
 import mujoco
 import numpy as np
 
-from lynxsim.rrr.build import build_path
 from lynxsim.rrr.modes import HOME_MODE
 from lynxsim.rrr.path import PlatformPath
-from lynxsim.sim.recording import ProgressFn, progress_hook, render_log, split_progress
+from lynxsim.sim.outputs import write_outputs
+from lynxsim.sim.recording import ProgressFn, progress_hook, split_progress
 from lynxsim.sim.render import RenderSettings
-from lynxsim.sim.replay import save_replay
 from lynxsim.sim.rrr.model import RRRIds
 from lynxsim.sim.rrr.playback import play_rrr, start_model
 from lynxsim.sim.summary import Playback
-from lynxsim.tasks import Task
-from lynxsim.traj.kinds import TrajectoryKind
 
-__all__ = ["DEFAULT_RRR_RENDER", "run_rrr_path", "run_rrr_task"]
+__all__ = ["DEFAULT_RRR_RENDER", "run_rrr_path"]
 
 DEFAULT_RRR_RENDER = RenderSettings(camera="top")
 """Video defaults for the 3-RRR: 640x480 at 30 frames/s from the orthographic top camera."""
@@ -72,44 +69,14 @@ def run_rrr_path(
         on_step=progress_hook(path.duration + settle_s, float(model.opt.timestep), stepping),
     )
     targets = np.column_stack([path.waypoints[:, :2], np.full(len(path.waypoints), height)])
-    if video is not None:
-        render_log(model, playback.log, video, render, targets, rendering)
-    if replay is not None:
-        save_replay(model, playback, replay, targets=targets, camera=render.camera)
-    if progress is not None:
-        progress(1.0)
-    return playback
-
-
-def run_rrr_task(
-    task: Task,
-    *,
-    kind: TrajectoryKind | str | None = None,
-    mode: int = HOME_MODE,
-    video: str | os.PathLike[str] | None = None,
-    render: RenderSettings = DEFAULT_RRR_RENDER,
-    settle_s: float = 0.5,
-    progress: ProgressFn | None = None,
-) -> Playback:
-    """Plan a 3-RRR task's path and play it (see :func:`run_rrr_path`).
-
-    Raises:
-        InvalidInputError: Not an rrr task, or a type not planned for it.
-        UnreachablePlatformPoseError: The path leaves the workspace.
-        PlatformPathError: It crosses a parallel singularity of ``mode``.
-    """
-    return run_rrr_path(
-        build_path(
-            task.poses,
-            task.trajectory if kind is None else kind,
-            task.durations,
-            through=task.pass_through,
-            stretch=task.stretch,
-        ),
-        task=task.name,
-        mode=mode,
+    write_outputs(
+        model,
+        playback,
+        targets,
         video=video,
         render=render,
-        settle_s=settle_s,
+        replay=replay,
+        rendering=rendering,
         progress=progress,
     )
+    return playback
