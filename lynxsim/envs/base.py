@@ -47,7 +47,6 @@ from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
 from lynxsim.inputs import real_array
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene
 from lynxsim.sim.arm.env_scene import EnvScene
-from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.randomizer import ModelRandomizer
 from lynxsim.sim.arm.slots import ObstacleSlots
 from lynxsim.sim.arm.task import GRIPPER_OPEN_M
@@ -207,7 +206,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self._q_ready = q_ready
         base = self.model.qpos0.copy()
         base[self._finger_qpos] = 0.5 * GRIPPER_OPEN_M
-        self._checker = arm_checker(self.model, base)
+        self._checker = scene.checker(base)
         self._set_goal(np.zeros(3))
         self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
 

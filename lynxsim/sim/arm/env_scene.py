@@ -17,7 +17,9 @@ import mujoco
 from lynxsim.angles import quat_yaw
 from lynxsim.scene import Cube, Obstacle, Scene
 from lynxsim.sim.arm.model import SceneIds, load_arm_spec, table_top_z
+from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.slots import ObstacleSlots, add_obstacle_slots
+from lynxsim.sim.collision import CollisionChecker
 
 __all__ = ["GOAL_MARK_SITE", "EnvScene"]
 
@@ -138,6 +140,14 @@ class EnvScene:
             if (g1, g2) in pairs and contact.dist[k] <= 0.0:
                 return True
         return False
+
+    def checker(self, base_qpos: Sequence[float] | None = None) -> CollisionChecker:
+        """The arm's batch collision checker of this scene (its obstacle slots as they stand).
+
+        Args:
+            base_qpos: The rest of the state (fingers, cube), (nq,); default ``qpos0``.
+        """
+        return arm_checker(self.model, base_qpos)
 
     def cube_pose(self) -> tuple[float, float, float, float] | None:
         """The cube's centre (x, y, z) [m] and yaw [rad] now, or None without a cube."""
