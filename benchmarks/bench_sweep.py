@@ -20,8 +20,9 @@ import time
 
 import numpy as np
 
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.scene import Scene
-from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sweep.runner import LocalBackend, run_sweep
 from lynxsim.sweep.spec import ObstacleSweep, SweepSpec, _digest, table_extent_mm
@@ -64,7 +65,7 @@ def _played(spec: SweepSpec, count: int) -> float:
     start = time.perf_counter()
     done = 0
     for kind in KINDS:
-        trajectory = task_trajectory(task, kind)
+        trajectory = motion(ARM, task, kind)
         for j in picks[: count // len(KINDS)].tolist():
             moved = dataclasses.replace(
                 obstacle,

@@ -38,8 +38,9 @@ import mujoco
 import numpy as np
 
 from lynxsim.arm.motion import tool_poses
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.playback import play_arm
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.recording import frame_steps, render_log
@@ -53,7 +54,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def bench(quality: Quality, rounds: int) -> None:
     task = load_task(ROOT / "tasks" / "pick_and_place.toml")
-    trajectory = task_trajectory(task, TrajectoryKind.QUINTIC)
+    trajectory = motion(ARM, task, TrajectoryKind.QUINTIC)
     model = load_arm_scene(task.scene)
     log = play_arm(model, trajectory, task=task.name).log
     settings = RenderSettings(quality=quality)

@@ -17,7 +17,7 @@ from lynxsim.arm.fk import FRAME_NAMES, frame_origins
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
 from lynxsim.errors import InvalidInputError, LynxsimError, TaskFileError
 from lynxsim.poses import ArmPose, JointPose
-from lynxsim.robots import motion_builder
+from lynxsim.robots import get
 from lynxsim.robots.arm import build_trajectory
 from lynxsim.scene import (
     REPORT_CUBE,
@@ -915,7 +915,7 @@ def test_huge_integers_and_deep_nesting_are_task_file_errors(
 def _assert_finite_or_typed_error(task: Task, kind: str | None) -> None:
     """Building ``task``'s motion of ``kind`` gives finite samples or a LynxsimError."""
     try:
-        motion = motion_builder(task.robot)(task, kind)
+        motion = get(task.robot).motion(task, task.trajectory if kind is None else kind)
     except LynxsimError:
         return
     assert math.isfinite(motion.duration), (kind, motion.duration)
@@ -1004,7 +1004,7 @@ def test_rrr_task_of_a_type_not_planned_loads_and_its_builder_lists_the_planned_
     task = load_text(RRR_TASK.replace('type = "line"', 'type = "cubic"', 1))
     assert task.trajectory is TrajectoryKind.CUBIC
     with pytest.raises(InvalidInputError, match=r"'cubic' is not planned .* one of: quintic$"):
-        motion_builder("rrr")(task, None)
+        get("rrr").motion(task, task.trajectory)
 
 
 # ------------------------------------------ property test: mutated scenes

@@ -6,7 +6,7 @@ Mutates the shipped task files (``tasks/*.toml``) two ways: structure-aware
 shapes, unknown keys; then write TOML again) and byte-level (flip, insert,
 delete and repeat bytes of the raw text). Every mutant is written to a file and
 loaded with :func:`lynxsim.tasks.load_task`; a task that loads is built into
-its motion of its own type with :func:`lynxsim.robots.motion_builder` and
+its motion of its own type with its robot record (:attr:`lynxsim.robots.Robot.motion`) and
 sampled. The contract:
 
 * ``load_task`` returns a :class:`~lynxsim.tasks.Task` or raises
@@ -45,7 +45,7 @@ from typing import Any, Literal
 import numpy as np
 
 from lynxsim.errors import LynxsimError, TaskFileError
-from lynxsim.robots import motion_builder
+from lynxsim.robots import get
 from lynxsim.tasks import Task, load_task
 from lynxsim.traj.kinds import TrajectoryKind
 
@@ -429,7 +429,9 @@ def samples_are_finite(motion: Any) -> bool:
 def build_and_check(task: Task, kind: str | None = None) -> Result:
     """Build ``task``'s motion (of ``kind``; None: its own) and check its samples."""
     try:
-        motion = motion_builder(task.robot)(task, kind)
+        motion = get(task.robot).motion(
+            task, task.trajectory if kind is None else TrajectoryKind(kind)
+        )
         finite = samples_are_finite(motion)
     except LynxsimError as exc:
         return Result("builder_error", f"{type(exc).__name__}: {exc}", task)

@@ -21,7 +21,8 @@ import numpy as np
 from lynxsim.errors import CommandLimitError
 from lynxsim.real.arm import load_arm_calibration
 from lynxsim.real.stream import StreamOptions
-from lynxsim.sim.arm.planning import task_trajectory
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.sim.arm.ssc32 import run_twin
 from lynxsim.tasks import find_tasks
 
@@ -45,13 +46,13 @@ def main() -> None:
     print("|---|---|---|---|---|---|---|")
     start = time.perf_counter()
     for task in find_tasks(args.tasks, "arm"):
-        own = task_trajectory(task)
+        own = motion(ARM, task)
         # A motion that collides stalls against its obstacle (huge errors either way):
         # its planned motion around the obstacles shows what the board adds.
         kinds = (
             [own]
             if not run_twin(task, own, base).comparison.ideal.collided
-            else [own, task_trajectory(task, "planned")]
+            else [own, motion(ARM, task, "planned")]
         )
         for trajectory, (label, baud, options) in itertools.product(kinds, STREAMS):
             name = f"{task.name} ({trajectory.kind.value})"

@@ -53,27 +53,28 @@ def _simulations(args: argparse.Namespace) -> None:
     from tqdm import tqdm
 
     from lynxsim.cli.play import SUMMARY_HEADER, summary_row
-    from lynxsim.demo.arm import arm_jobs, arm_runs
     from lynxsim.demo.expert import EXPERT_SEED, EXPERT_VIDEO, expert_job
     from lynxsim.demo.index_page import write_demo_index
     from lynxsim.demo.jobs import Job, run_jobs
     from lynxsim.demo.obstacle_map import MAP_DIR, MAP_STEP_MM, MapSummary, map_job
     from lynxsim.demo.rrr import FIGURE20_FILE, rrr_jobs
+    from lynxsim.demo.runs import demo_jobs, demo_runs, demo_tasks
     from lynxsim.envs.evaluation import EpisodeStats
     from lynxsim.envs.registration import PICK_AND_PLACE_ID
     from lynxsim.sim.render import RenderSettings
     from lynxsim.sim.report import RunReport
     from lynxsim.sweep.maps import REPORT_MAP_TASKS
-    from lynxsim.tasks import find_tasks
 
     out: Path = args.out_dir
-    runs = list(arm_runs(find_tasks(args.tasks, "arm"), lambda m: print(f"skipped: {m}")))
-    n_rrr = len(find_tasks(args.tasks, "rrr"))
+    runs = list(demo_runs(demo_tasks(args.tasks), lambda m: print(f"skipped: {m}")))
+    counts: dict[str, int] = {}
+    for run in runs:
+        counts[run.robot.name] = counts.get(run.robot.name, 0) + 1
     quality = quality_of(args)
     render = RenderSettings(quality=quality)
     jobs: list[Job[RunReport | EpisodeStats | MapSummary | None]] = [
-        *arm_jobs(runs, out, render),
-        *rrr_jobs(out, render, tasks=args.tasks),
+        *demo_jobs(runs, out, render),
+        *rrr_jobs(out, tasks=args.tasks),
         expert_job(out, quality),
     ]
     n_other = len(jobs)
@@ -83,7 +84,8 @@ def _simulations(args: argparse.Namespace) -> None:
         print(f"skipped: the obstacle map needs {', '.join(REPORT_MAP_TASKS)} in {args.tasks}")
     workers = min(args.jobs, len(jobs))
     print(
-        f"\nSimulating {len(runs)} arm runs, {n_rrr} 3-RRR runs, an expert episode"
+        f"\nSimulating {', '.join(f'{n} {name} runs' for name, n in counts.items()) or 'no runs'}"
+        ", an expert episode"
         f"{f' and a {MAP_STEP_MM:g} mm obstacle map' if len(jobs) > n_other else ''} into "
         f"{out}/ ({len(jobs)} jobs, {workers} at a time, {quality.value} rendering)"
     )

@@ -1,4 +1,8 @@
-"""``lynxsim plan``: a collision-free motion through a task's poses around its obstacles."""
+"""``lynxsim plan``: a collision-free motion through a task's poses around its obstacles.
+
+Any robot that plans (:attr:`lynxsim.robots.Robot.planning`) is planned by
+:func:`lynxsim.robots.plan`; another robot's task is one line on stderr.
+"""
 
 from __future__ import annotations
 
@@ -17,13 +21,14 @@ __all__ = ["register"]
 
 
 def _plan(args: argparse.Namespace) -> int:
-    from lynxsim.cli.traj import write_samples
+    from lynxsim.cli.traj import joint_kinematics, write_samples
     from lynxsim.plan import PlanProgress
     from lynxsim.plots.trajectory import plot_tool_paths
-    from lynxsim.sim.arm.planning import plan_task
+    from lynxsim.robots import get, plan
     from lynxsim.tasks import load_task
 
     task = load_task(args.task)
+    robot = get(task.robot)
     out: Path = args.out_dir
     samples = output_path(out, task.name, "planned", suffix=f".{args.format}")
     plot = output_path(out, task.name, "planned_path", suffix=".png")
@@ -37,7 +42,8 @@ def _plan(args: argparse.Namespace) -> int:
             print(f"\rsegment {p.label}: {p.stage}...{' ' * 20}", end="", file=sys.stderr)
 
     with about_task(args.task):
-        motion = plan_task(
+        motion = plan(
+            robot,
             task,
             planner=args.planner,
             margin_m=args.margin_mm * 1e-3,
@@ -48,10 +54,14 @@ def _plan(args: argparse.Namespace) -> int:
     if show:
         print("\r" + " " * 60 + "\r", end="", file=sys.stderr)
     traj = motion.trajectory
-    write_samples(traj, traj.times_at_rate(args.rate_hz), samples, si=args.si)
+    kinematics = joint_kinematics(robot, "lynxsim plan", args.task)
+    write_samples(
+        traj, traj.times_at_rate(args.rate_hz), samples, si=args.si, kinematics=kinematics
+    )
     plot_tool_paths(
         {"planned": traj},
         plot,
+        tool=kinematics.tool_points,
         obstacles=task.scene.obstacles,
         title=f"{task.name}: planned tool path ({args.planner}, margin {args.margin_mm:g} mm)",
     )

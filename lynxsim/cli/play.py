@@ -19,9 +19,17 @@ from lynxsim.web.page import page_from_file
 from lynxsim.web.replay_file import REPLAY_SUFFIX
 
 if TYPE_CHECKING:
-    from lynxsim.tasks import Task
+    from lynxsim.robots import Robot
+    from lynxsim.run_options import RunOption
 
-__all__ = ["SUMMARY_HEADER", "format_report", "progress_bar", "register", "summary_row"]
+__all__ = [
+    "SUMMARY_HEADER",
+    "add_run_option_flags",
+    "format_report",
+    "progress_bar",
+    "register",
+    "summary_row",
+]
 
 SUMMARY_HEADER = (
     f"{'task':20s} {'type':14s} {'duration':>9s} {'max err':>8s} {'final':>7s} "
@@ -99,63 +107,51 @@ def progress_bar(label: str, disable: bool) -> tuple[Callable[[float], None], Ca
     return update, bar.close
 
 
-_RUN_OPTIONS = ("mode", "no_obstacle")
-"""Flags of ``play`` that are options of one robot's runs (``SimAdapter.options``)."""
-
-
-def _check_flags(args: argparse.Namespace, task: Task) -> None:
+def _check_flags(args: argparse.Namespace, robot: Robot) -> None:
     """Refuse, before any work, the flags of ``play`` that do not apply to the task's robot.
 
     Raises:
         InvalidInputError: A run option of another robot (``--mode``, ``--no-obstacle``) or a
             ``--camera`` the robot's model lacks; the message names the flag and the robot.
     """
-    from lynxsim.registry import info, names
-    from lynxsim.resources import model_path
-    from lynxsim.robots import robot, sim_adapter
+    from lynxsim.robots import every
 
-    entry = info(task.robot)
-    accepted = sim_adapter(entry.name).options
-    task_is = f"{args.task} is a task of the {entry.title} (robot {entry.name!r})"
-    for option in _RUN_OPTIONS:
-        if getattr(args, option) is None or option in accepted:
+    accepted = {o.name for o in robot.run_options}
+    task_is = f"{args.task} is a task of {robot.described}"
+    robots = every()
+    for option in dict.fromkeys(o for r in robots for o in r.run_options):
+        if getattr(args, option.name, None) is None or option.name in accepted:
             continue
         owners = " or ".join(
-            f"the {r.title} (robot {r.name!r})"
-            for r in map(info, names())
-            if option in sim_adapter(r.name).options
+            r.described for r in robots if option.name in {o.name for o in r.run_options}
         )
-        flag = "--" + option.replace("_", "-")
-        raise InvalidInputError(f"{flag} applies only to tasks of {owners}; {task_is}")
-    if args.camera is not None:
-        from lynxsim.sim.render import model_cameras
-
-        cameras = model_cameras(model_path(robot(entry.name).model))
-        if args.camera not in cameras:
-            raise InvalidInputError(
-                f"--camera {args.camera!r}: the {entry.title} model has no such camera; "
-                f"available: {', '.join(cameras)}"
-            )
+        raise InvalidInputError(f"{option.flag} applies only to tasks of {owners}; {task_is}")
+    if args.camera is not None and args.camera not in robot.cameras:
+        raise InvalidInputError(
+            f"--camera {args.camera!r}: the {robot.title} model has no such camera; "
+            f"available: {', '.join(robot.cameras)}"
+        )
 
 
 def _play(args: argparse.Namespace) -> int:
-    from lynxsim.robots import sim_adapter
+    from lynxsim.robots import get, motion, simulation
+    from lynxsim.run_options import RunValues
     from lynxsim.sim.render import RenderSettings
     from lynxsim.tasks import load_task
 
     task = load_task(args.task)
-    _check_flags(args, task)
-    if args.controller == "ssc32":
-        from lynxsim.cli.real import play_through_ssc32
+    robot = get(task.robot)
+    _check_flags(args, robot)
+    if args.controller != "ideal":
+        from lynxsim.cli.real import play_through_controller
 
-        return play_through_ssc32(args, task)
-    adapter = sim_adapter(task.robot)
-    options = {
-        name: getattr(args, name) for name in _RUN_OPTIONS if getattr(args, name) is not None
-    }
+        return play_through_controller(args, task, robot)
+    values = RunValues.of(
+        robot.run_options, {o.name: getattr(args, o.name) for o in robot.run_options}
+    )
     with about_task(args.task):
-        prepared = adapter.prepare(task, args.type)
-    out = args.out or output_path("videos", task.name, prepared.label, suffix=".mp4")
+        built = motion(robot, task, args.type)
+    out = args.out or output_path("videos", task.name, built.label, suffix=".mp4")
     if out.suffix.lower() != ".mp4":
         raise InvalidInputError(f"--out must name an .mp4 file, got {out}")
     check_destination(out.with_suffix(".json"))
@@ -163,25 +159,50 @@ def _play(args: argparse.Namespace) -> int:
     page = check_destination(out.with_suffix(".html")) if args.html else None
     if not args.no_video:
         check_destination(out)
-    update, close = progress_bar(f"{task.name} {prepared.label}", args.json or args.quiet)
+    update, close = progress_bar(f"{task.name} {built.label}", args.json or args.quiet)
     try:
         with about_task(args.task):
-            playback = prepared.run(
+            playback = simulation(robot).play(
+                task,
+                built,
+                options=values,
                 video=None if args.no_video else out,
                 render=RenderSettings(
-                    camera=args.camera or adapter.default_camera,
+                    camera=args.camera or robot.cameras[0],
                     quality=quality_of(args),
                     fps=args.fps,
                 ),
                 progress=update,
                 replay=replay,
-                **options,
             )
     finally:
         close()
     if page is not None:
         page_from_file(replay, page)
     return _print_run(args, playback.report, None if args.no_video else out, out, page)
+
+
+def add_run_option_flags(p: argparse.ArgumentParser) -> None:
+    """One flag per run option of every registered robot (:attr:`Robot.run_options`)."""
+    from lynxsim.robots import every
+
+    owners: dict[RunOption, list[str]] = {}
+    for robot in every():
+        for option in robot.run_options:
+            owners.setdefault(option, []).append(robot.name)
+    for option, names in owners.items():
+        text = f"{' or '.join(names)} tasks: {option.help}"
+        if option.type is bool:
+            p.add_argument(option.flag, action="store_const", const=True, default=None, help=text)
+        else:
+            p.add_argument(
+                option.flag,
+                type=int,
+                choices=option.choices,
+                default=None,
+                metavar=option.metavar,
+                help=text,
+            )
 
 
 def _print_run(
@@ -204,6 +225,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     from lynxsim.bounds import MAX_FPS, MIN_FPS
     from lynxsim.cli.real import add_controller_flags
     from lynxsim.cli.units import bounded_float
+    from lynxsim.robots import every
 
     p = sub.add_parser(
         "play",
@@ -231,25 +253,13 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         help="also write the run's replay page FILE.html beside the report (the replay data "
         "FILE.replay.npz is always saved, for 'lynxsim view')",
     )
-    p.add_argument(
-        "--no-obstacle",
-        action="store_const",
-        const=True,
-        default=None,
-        help="arm tasks: the scene without the task's obstacles",
-    )
+    add_run_option_flags(p)
     p.add_argument(
         "--camera",
         default=None,
-        help="camera of the robot's model: front, top (default front; top for rrr tasks)",
-    )
-    p.add_argument(
-        "--mode",
-        type=int,
-        choices=range(8),
-        default=None,
-        metavar="0..7",
-        help="rrr tasks: working mode of the inverse kinematics (default 7, the report's)",
+        help="camera of the robot's model (default the robot's first: "
+        + "; ".join(f"{r.name} {', '.join(r.cameras)}" for r in every())
+        + ")",
     )
     add_quality_flag(p)
     p.add_argument(

@@ -6,8 +6,10 @@ and the digital twin through the board must both be clear, unless
 board with a log; ``--dry-run`` prints the stream instead. ``lynxsim real
 emulate`` serves an emulated board on a pseudo-terminal and prints its path.
 ``lynxsim real compare`` compares measured joint angles with a log's simulated
-run. ``lynxsim play --controller ssc32`` (:func:`play_through_ssc32`) plays a
-task through the digital twin.
+run. ``lynxsim play --controller ssc32`` (:func:`play_through_controller`) plays a
+task through the digital twin. The task's robot is looked up through the robot
+interface; a robot without a real backend (:attr:`lynxsim.robots.Robot.real`)
+is refused.
 """
 
 from __future__ import annotations
@@ -30,37 +32,42 @@ from lynxsim.fileio import check_destination, output_path, write_json
 if TYPE_CHECKING:
     from lynxsim.real.calibration import Calibration
     from lynxsim.real.stream import StreamOptions
-    from lynxsim.sim.arm.ssc32 import TwinRun
+    from lynxsim.robots import Robot
+    from lynxsim.sim.adapter import RealBackend
+    from lynxsim.sim.twin import TwinRun
     from lynxsim.tasks import Task
 
-__all__ = ["add_controller_flags", "play_through_ssc32", "register"]
+__all__ = ["add_controller_flags", "play_through_controller", "register"]
 
 _TWIN_EVERY = 10
 """The log keeps every this-th physics step of the twin's simulated joints (20 ms at 2 ms)."""
 
 
-def _require_arm(task: Task, what: str) -> None:
-    """Refuse a task whose poses are not the arm's (tool or joint poses), as the planner does."""
-    from lynxsim.poses import ArmPose, JointPose
+def _backend(robot: Robot, what: str, source: object, controller: str) -> RealBackend:
+    """The real backend of a task's robot, refused by capability (the robots that have one)."""
+    from lynxsim.errors import CapabilityError
+    from lynxsim.robots import real_backend
 
-    if not all(isinstance(p, ArmPose | JointPose) for p in task.poses):
-        raise InvalidInputError(
-            f"{what} applies only to arm tasks; {task.source} is a task of robot {task.robot!r}"
+    backend = real_backend(robot, what, source)
+    if backend.controller != controller:
+        raise CapabilityError(
+            f"{what}: {robot.described} is driven through {backend.controller!r}, "
+            f"not {controller!r}"
         )
+    return backend
 
 
-def _arm_task(path: Path) -> Task:
+def _real_task(path: Path) -> tuple[Task, Robot, RealBackend]:
+    from lynxsim.robots import get
     from lynxsim.tasks import load_task
 
     task = load_task(path)
-    _require_arm(task, "lynxsim real")
-    return task
+    robot = get(task.robot)
+    return task, robot, _backend(robot, "lynxsim real", task.source, "ssc32")
 
 
-def _calibration(value: str) -> Calibration:
-    from lynxsim.real.arm import load_arm_calibration
-
-    return load_arm_calibration(None if value == "default" else value)
+def _calibration(backend: RealBackend, value: str) -> Calibration:
+    return backend.calibration(None if value == "default" else value)
 
 
 def _options(args: argparse.Namespace) -> StreamOptions:
@@ -113,20 +120,19 @@ def _play(args: argparse.Namespace) -> int:
     from lynxsim.cli.play import progress_bar
     from lynxsim.real.driver import Ssc32Link, play_stream
     from lynxsim.real.log import RunLogWriter
-    from lynxsim.sim.arm.planning import task_trajectory
-    from lynxsim.sim.arm.ssc32 import run_twin
+    from lynxsim.robots import motion
 
     if args.port is None and not args.dry_run:
         raise InvalidInputError("--port DEV is needed (or --dry-run to print the stream)")
-    task = _arm_task(args.task)
-    calibration = _calibration(args.calibration)
+    task, robot, backend = _real_task(args.task)
+    calibration = _calibration(backend, args.calibration)
     options = _options(args)
     with about_task(args.task):
-        trajectory = task_trajectory(task, args.type)
-    log_path = args.log or output_path("logs", task.name, trajectory.kind.value, suffix=".jsonl")
+        built = motion(robot, task, args.type)
+    log_path = args.log or output_path("logs", task.name, built.label, suffix=".jsonl")
     check_destination(log_path)
     with about_task(args.task):
-        twin = run_twin(task, trajectory, calibration, options)
+        twin = backend.twin(task, built, calibration, options)
 
     def say(text: str) -> None:
         if not args.quiet:
@@ -221,19 +227,19 @@ def add_controller_flags(p: argparse.ArgumentParser) -> None:
     )
 
 
-def play_through_ssc32(args: argparse.Namespace, task: Task) -> int:
+def play_through_controller(args: argparse.Namespace, task: Task, robot: Robot) -> int:
     """``lynxsim play TASK --controller ssc32``: the twin's report, video, and the difference."""
     from lynxsim.cli.play import format_report, progress_bar
     from lynxsim.real.stream import StreamOptions
-    from lynxsim.sim.arm.planning import task_trajectory
-    from lynxsim.sim.arm.ssc32 import run_twin
+    from lynxsim.robots import motion
     from lynxsim.sim.render import Quality, RenderSettings
 
-    _require_arm(task, "--controller ssc32")
-    calibration = _calibration(args.calibration)
+    what = f"--controller {args.controller}"
+    backend = _backend(robot, what, task.source, args.controller)
+    calibration = _calibration(backend, args.calibration)
     with about_task(args.task):
-        trajectory = task_trajectory(task, args.type)
-    label = f"{trajectory.kind.value}_ssc32"
+        built = motion(robot, task, args.type)
+    label = f"{built.label}_{backend.controller}"
     out = args.out or output_path("videos", task.name, label, suffix=".mp4")
     if out.suffix.lower() != ".mp4":
         raise InvalidInputError(f"--out must name an .mp4 file, got {out}")
@@ -242,14 +248,16 @@ def play_through_ssc32(args: argparse.Namespace, task: Task) -> int:
     update, close = progress_bar(f"{task.name} {label}", args.json or args.quiet)
     try:
         with about_task(args.task):
-            run = run_twin(
+            run = backend.twin(
                 dataclasses.replace(task, scene=scene),
-                trajectory,
+                built,
                 calibration,
                 StreamOptions(),
                 video=None if args.no_video else out,
                 render=RenderSettings(
-                    camera=args.camera or "front", quality=Quality(args.quality), fps=args.fps
+                    camera=args.camera or robot.cameras[0],
+                    quality=Quality(args.quality),
+                    fps=args.fps,
                 ),
                 progress=update,
             )

@@ -1,4 +1,4 @@
-"""``lynxsim sweep``: many runs of the arm's tasks, varied by a sweep file, tabled and mapped."""
+"""``lynxsim sweep``: many runs of table-scene tasks, varied by a sweep file, tabled and mapped."""
 
 from __future__ import annotations
 
@@ -93,7 +93,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``sweep`` sub-command."""
     p = sub.add_parser(
         "sweep",
-        help="many runs of arm tasks varied by a sweep file: a table and maps",
+        help="many runs of table-scene tasks varied by a sweep file: a table and maps",
         description="Run every combination a sweep file asks for (tasks, trajectory types, "
         "obstacle placements on a grid or at random, radii, cube positions, planner seeds); "
         "write one table (CSV and NPZ, one row per run) and one map per task and type. "

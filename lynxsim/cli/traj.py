@@ -1,7 +1,9 @@
 """``lynxsim traj``: trajectories of a task file, written as samples and plots.
 
 Samples are in degrees and millimetres unless ``--si`` (rad, m); every column
-or array name carries its unit.
+or array name carries its unit. Any robot with joint kinematics
+(:attr:`lynxsim.robots.Robot.kinematics`) is written: its joints, its tool
+point and the tool angles its kinematics names (the arm's pitch).
 """
 
 from __future__ import annotations
@@ -14,14 +16,14 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from lynxsim.arm import tool_pose
 from lynxsim.bounds import MAX_RATE_HZ, MAX_SEGMENT_S, MIN_RATE_HZ, MIN_SEGMENT_S
 from lynxsim.cli.context import about_task
 from lynxsim.cli.units import bounded_float
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import atomic_path, check_destination, output_path
+from lynxsim.robots import Robot
 from lynxsim.tasks import Task, load_task
-from lynxsim.traj import Trajectory, TrajectoryKind
+from lynxsim.traj import Kinematics, Trajectory, TrajectoryKind
 
 __all__ = ["register", "write_samples"]
 
@@ -36,27 +38,27 @@ class _Samples(NamedTuple):
     columns: tuple[str, ...]
 
 
-def _samples(traj: Trajectory, t: np.ndarray, si: bool) -> list[_Samples]:
+def _samples(traj: Trajectory, t: np.ndarray, si: bool, kinematics: Kinematics) -> list[_Samples]:
     angle, length, scale = ("rad", "m", 1.0) if si else ("deg", "mm", 1e3)
     to_angle = (lambda v: v) if si else np.degrees
     states = traj.sample(t)
-    pose = tool_pose(states.q)
+    tool = kinematics.tool(states.q)
+    joints = range(1, traj.n_joints + 1)
     out = [_Samples("t_s", t, ("t_s",))]
     for (name, per), values in zip(_ORDERS, states):
         unit = f"{angle}{per}"
         out.append(
-            _Samples(
-                f"{name}_{unit}", to_angle(values), tuple(f"{name}{j}_{unit}" for j in range(1, 6))
-            )
+            _Samples(f"{name}_{unit}", to_angle(values), tuple(f"{name}{j}_{unit}" for j in joints))
         )
     out.append(
         _Samples(
             f"tool_position_{length}",
-            pose.position * scale,
+            tool.position * scale,
             tuple(f"{axis}_{length}" for axis in "xyz"),
         )
     )
-    out.append(_Samples(f"pitch_{angle}", to_angle(pose.pitch), (f"pitch_{angle}",)))
+    for name, values in tool.angles:
+        out.append(_Samples(f"{name}_{angle}", to_angle(values), (f"{name}_{angle}",)))
     return out
 
 
@@ -76,9 +78,15 @@ def _write_npz(path: Path, samples: list[_Samples], traj: Trajectory) -> None:
         np.savez(tmp, **arrays)
 
 
-def write_samples(traj: Trajectory, t: np.ndarray, dest: Path, *, si: bool) -> None:
-    """Write a trajectory's samples at times ``t`` [s] as CSV or NPZ (by ``dest``'s suffix)."""
-    data = _samples(traj, t, si)
+def write_samples(
+    traj: Trajectory, t: np.ndarray, dest: Path, *, si: bool, kinematics: Kinematics
+) -> None:
+    """Write a trajectory's samples at times ``t`` [s] as CSV or NPZ (by ``dest``'s suffix).
+
+    Columns: time, the joints and their derivatives, the tool point and the tool
+    angles of ``kinematics`` (the robot's).
+    """
+    data = _samples(traj, t, si, kinematics)
     if dest.suffix == ".csv":
         _write_csv(dest, data)
     else:
@@ -98,22 +106,54 @@ def _apply_overrides(task: Task, args: argparse.Namespace) -> Task:
     return task
 
 
-def _comparison(task: Task, dest: Path) -> None:
+def _comparison(robot: Robot, kinematics: Kinematics, task: Task, dest: Path) -> None:
     from lynxsim.plots.trajectory import plot_tool_paths
-    from lynxsim.sim.arm.planning import task_trajectory
+    from lynxsim.robots import motion
 
     trajectories = {}
-    for kind in TrajectoryKind:
+    for kind in robot.kinds:
         try:
-            trajectories[kind.value] = task_trajectory(task, kind)
+            trajectories[kind.value] = joint_trajectory(robot, motion(robot, task, kind))
         except LynxsimError as exc:
             print(f"lynxsim: note: no {kind.value} path in the comparison: {exc}", file=sys.stderr)
     plot_tool_paths(
         trajectories,
         dest,
+        tool=kinematics.tool_points,
         obstacles=task.scene.obstacles,
         title=f"{task.name}: tool paths of every trajectory type",
     )
+
+
+def joint_kinematics(robot: Robot, command: str, source: object) -> Kinematics:
+    """The robot's joint kinematics, or one clear error naming the robots that have some.
+
+    Raises:
+        CapabilityError: The robot's motions are not joint trajectories.
+    """
+    from lynxsim.errors import CapabilityError
+    from lynxsim.robots import with_capability
+
+    if robot.kinematics is None:
+        owners = ", ".join(r.name for r in with_capability("kinematics")) or "none"
+        raise CapabilityError(
+            f"{command} writes joint trajectories; {source} is a task of {robot.described}, "
+            f"whose motions are not (robots with joint kinematics: {owners})"
+        )
+    return robot.kinematics
+
+
+def joint_trajectory(robot: Robot, built: object) -> Trajectory:
+    """A robot's motion as the joint trajectory its kinematics promise.
+
+    Raises:
+        InvalidInputError: The robot built something else.
+    """
+    if not isinstance(built, Trajectory):
+        raise InvalidInputError(
+            f"{robot.described} has joint kinematics but built a {type(built).__name__}"
+        )
+    return built
 
 
 def _list() -> int:
@@ -129,11 +169,13 @@ def _traj(args: argparse.Namespace) -> int:
     if args.task is None:
         raise InvalidInputError("give a task file (e.g. tasks/pick_and_place.toml), or --list")
     from lynxsim.plots.trajectory import plot_joint_profiles
-    from lynxsim.sim.arm.planning import task_trajectory
+    from lynxsim.robots import get, motion
 
     task = _apply_overrides(load_task(args.task), args)
+    robot = get(task.robot)
+    kinematics = joint_kinematics(robot, "lynxsim traj", args.task)
     with about_task(args.task):
-        traj = task_trajectory(task, args.type)
+        traj = joint_trajectory(robot, motion(robot, task, args.type))
         t = traj.times_at_rate(args.rate_hz)
     out: Path = args.out_dir
     samples = output_path(out, task.name, traj.kind.value, suffix=f".{args.format}")
@@ -141,13 +183,13 @@ def _traj(args: argparse.Namespace) -> int:
     paths = output_path(out, task.name, "paths", suffix=".png")
     for dest in (samples, joints, *(() if args.no_compare else (paths,))):
         check_destination(dest)
-    write_samples(traj, t, samples, si=args.si)
+    write_samples(traj, t, samples, si=args.si, kinematics=kinematics)
     plot_joint_profiles(
         traj, joints, title=f"{task.name}: {traj.kind.value} trajectory, {traj.duration:.3f} s"
     )
     written = [samples, joints]
     if not args.no_compare:
-        _comparison(task, paths)
+        _comparison(robot, kinematics, task, paths)
         written.append(paths)
     durations = ", ".join(f"{d:.3f}" for d in traj.segment_durations)
     print(

@@ -1,41 +1,37 @@
-"""The 3-RRR part of the main job: its tasks played in MuJoCo, and Figure 20 judged by simulation.
+"""The 3-RRR's extras of the main job: its paths over its workspace, and Figure 20 judged.
 
-Writes, under one output folder, per task of ``tasks/`` with ``robot = "rrr"``
-an MP4 from the orthographic ``top`` camera with the platform's path traced,
-its JSON run report, its replay data and page and, in ``plots/``, the path
-drawn over its workspace;
-the workspace maps of the report's Figure 21 orientations in ``plots/``;
-and ``rrr_figure20_simulation.txt``, the simulation's verdicts on the
-report's Figure 20 poses. Returns the run reports for the summary table. Each
-run, the workspace maps and the Figure 20 verdicts are a
-:class:`~lynxsim.demo.jobs.Job` of their own (:func:`rrr_jobs`).
+The 3-RRR's tasks are played as every robot's are (:mod:`lynxsim.demo.runs`:
+an MP4 from its first camera, the orthographic ``top``, with the platform's path
+traced, the JSON run report, the replay data and page). Its extras write, under
+the same output folder, in ``plots/`` per 3-RRR task of ``tasks/`` the path drawn
+over its workspace and the workspace maps of the report's Figure 21
+orientations, and ``rrr_figure20_simulation.txt``, the simulation's verdicts on
+the report's Figure 20 poses. Each is a :class:`~lynxsim.demo.jobs.Job` of its
+own (:func:`rrr_jobs`); :func:`run_rrr_demo` runs the 3-RRR's part alone.
 """
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import math
 from pathlib import Path
 
 import numpy as np
 
-from lynxsim.demo.arm import PLOT_COST
 from lynxsim.demo.jobs import Job, JobProgress, job_progress
+from lynxsim.demo.runs import PLOT_COST, DemoRun, play_run
 from lynxsim.fileio import atomic_path, file_stem
 from lynxsim.plots.rrr import plot_rrr_path, plot_rrr_workspace, view_extent
 from lynxsim.reproduce.figure20 import figure20_simulation, format_figure20_simulation
-from lynxsim.robots.rrr import path_from_task
+from lynxsim.robots.rrr import ROBOT, path_from_task
 from lynxsim.rrr import mode_label
-from lynxsim.rrr.modes import HOME_MODE
+from lynxsim.rrr.modes import HOME_MODE, MODE_OPTION
 from lynxsim.rrr.workspace import workspace_maps
+from lynxsim.run_options import RunValues
 from lynxsim.sim.recording import ProgressFn
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.report import RunReport
-from lynxsim.sim.rrr.task import run_rrr_path
 from lynxsim.tasks import Task, find_tasks
-from lynxsim.web.page import page_from_file
-from lynxsim.web.replay_file import REPLAY_SUFFIX
 
 __all__ = [
     "FIGURE20_FILE",
@@ -60,10 +56,8 @@ _FIGURE20_COST = 4 * PLOT_COST
 """Cost of the Figure 20 verdicts (settling and pulling in MuJoCo), in frames."""
 
 
-def _play(
-    task: Task, out: Path, render: RenderSettings, mode: int, progress: ProgressFn | None
-) -> RunReport:
-    """Plot, simulate and record one task; write its JSON report."""
+def _path_plot(task: Task, out: Path, mode: int, progress: ProgressFn | None = None) -> None:
+    """A 3-RRR task's platform path drawn over its workspace, in ``plots/``."""
     path = path_from_task(task)
     stem = file_stem(task.name, path.label)
     poses = path.sample(np.linspace(0.0, path.duration, PATH_PLOT_SAMPLES)).pose
@@ -74,18 +68,8 @@ def _play(
         title=f"{task.name}: platform path ({path.label}, {path.duration:.2f} s), "
         f"working mode {mode} ({mode_label(mode)})",
     )
-    playback = run_rrr_path(
-        path,
-        task=task.name,
-        mode=mode,
-        video=out / f"{stem}.mp4",
-        render=render,
-        progress=progress,
-        replay=out / f"{stem}{REPLAY_SUFFIX}",
-    )
-    playback.report.write_json(out / f"{stem}.json")
-    page_from_file(out / f"{stem}{REPLAY_SUFFIX}", out / f"{stem}.html")
-    return playback.report
+    if progress is not None:
+        progress(1.0)
 
 
 def _workspace_plots(out: Path, mode: int, progress: ProgressFn | None = None) -> None:
@@ -109,26 +93,21 @@ def _figure20(out: Path, progress: ProgressFn | None = None) -> None:
 
 def rrr_jobs(
     out: Path,
-    render: RenderSettings,
     *,
     tasks: Path = Path("tasks"),
     mode: int = HOME_MODE,
-) -> list[Job[RunReport | None]]:
-    """The jobs of the 3-RRR part: each task's run (its report), the workspace maps, Figure 20.
+) -> list[Job[None]]:
+    """The 3-RRR's extras: each task's path plot, the workspace maps, Figure 20's verdicts.
 
     Args:
         out: Output folder (as :func:`run_rrr_demo`).
-        render: Video settings; the camera is always ``top``.
         tasks: Folder of task files.
-        mode: Working mode 0..7 of every run.
+        mode: Working mode 0..7 the plots draw.
     """
-    settings = dataclasses.replace(render, camera="top")
-    jobs: list[Job[RunReport | None]] = []
-    for task in find_tasks(tasks, "rrr"):
-        path = path_from_task(task)
-        work = functools.partial(_play, task, out, settings, mode)
-        frames = path.duration * render.fps
-        jobs.append(Job(file_stem(task.name, path.label), PLOT_COST + frames, work))
+    jobs: list[Job[None]] = []
+    for task in find_tasks(tasks, ROBOT.name):
+        plot = functools.partial(_path_plot, task, out, mode)
+        jobs.append(Job(f"{task.name}_path_plot", PLOT_COST, plot))
     workspace = functools.partial(_workspace_plots, out, mode)
     jobs.append(Job("rrr_workspace", _WORKSPACE_COST, workspace))
     jobs.append(Job(FIGURE20_FILE, _FIGURE20_COST, functools.partial(_figure20, out)))
@@ -158,11 +137,12 @@ def run_rrr_demo(
         The run reports, in task-file order.
     """
     out = Path(out)
-    settings = dataclasses.replace(render, camera="top")
-    reports = [
-        _play(task, out, settings, mode, job_progress(progress, i))
-        for i, task in enumerate(find_tasks(tasks, "rrr"))
-    ]
+    options = RunValues.of(ROBOT.run_options, {MODE_OPTION.name: mode})
+    reports = []
+    for i, task in enumerate(find_tasks(tasks, ROBOT.name)):
+        run = DemoRun(ROBOT, task, path_from_task(task), options)
+        _path_plot(task, out, mode)
+        reports.append(play_run(run, out, render, job_progress(progress, i)))
     _workspace_plots(out, mode)
     _figure20(out)
     return reports

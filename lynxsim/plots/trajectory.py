@@ -3,19 +3,19 @@
 Joint position, velocity, acceleration and jerk against time are the report's
 Figures 10–18; the tool paths of several trajectory types over one task with
 the cylinder obstacle are its Figure 19. Axes in the report's units: degrees, millimetres, seconds.
+Any robot's joint trajectories are drawn: the joints are named by the trajectory's
+bounds, the tool points come from the robot's forward kinematics (``tool=``).
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
 from matplotlib.axes import Axes
 
-from lynxsim.arm import LYNX_ARM, tool_pose
-from lynxsim.arm.motion import tool_poses
 from lynxsim.plots.obstacles import (
     draw_obstacles_3d,
     draw_obstacles_top,
@@ -26,9 +26,11 @@ from lynxsim.plots.style import new_figure, plain_text, save_figure
 from lynxsim.scene import REPORT_CYLINDER, Obstacle
 from lynxsim.traj import Trajectory
 
-__all__ = ["plot_joint_profiles", "plot_tool_paths"]
+__all__ = ["ToolPoints", "plot_joint_profiles", "plot_tool_paths"]
 
 FloatArray = npt.NDArray[np.float64]
+ToolPoints = Callable[[FloatArray], FloatArray]
+"""A robot's tool points of joint vectors, (T, n) [rad] -> (T, 3) [m]."""
 
 REPORT_STEPS = 10
 """Samples per segment of the report's trajectories, drawn as markers [-]."""
@@ -91,19 +93,21 @@ def plot_joint_profiles(
     fig = new_figure(11.0, 11.0)
     axes = fig.subplots(4, 1, sharex=True)
     limited = traj.kind.limited_orders
+    names = traj.bounds.names
     for order, (ax, (quantity, ylabel), values) in enumerate(zip(axes, _PANELS, states)):
-        for j in range(5):
+        for j in range(traj.n_joints):
+            color = _COLORS[j % len(_COLORS)]
             ax.plot(
                 t,
                 np.degrees(values[:, j]),
-                color=_COLORS[j],
+                color=color,
                 lw=1.3,
-                label=f"q{j + 1} {LYNX_ARM.joint_names[j]}",
+                label=f"q{j + 1} {names[j]}",
             )
             if order in limited:
                 bound = np.degrees(traj.limits.of_order(order)[j])
-                ax.axhline(bound, color=_COLORS[j], lw=0.7, ls="--", alpha=0.5)
-                ax.axhline(-bound, color=_COLORS[j], lw=0.7, ls="--", alpha=0.5)
+                ax.axhline(bound, color=color, lw=0.7, ls="--", alpha=0.5)
+                ax.axhline(-bound, color=color, lw=0.7, ls="--", alpha=0.5)
         _mark_waypoints(ax, traj, label=order == 0)
         if order and order not in limited:
             ax.text(
@@ -133,6 +137,7 @@ def plot_tool_paths(
     trajectories: Mapping[str, Trajectory],
     dest: str | os.PathLike[str],
     *,
+    tool: ToolPoints,
     obstacles: Sequence[Obstacle] = (REPORT_CYLINDER,),
     rate_hz: float = 200.0,
     title: str | None = None,
@@ -146,6 +151,7 @@ def plot_tool_paths(
     Args:
         trajectories: Label to trajectory, all through the same waypoints.
         dest: PNG path (written atomically).
+        tool: The robot's tool points of joint vectors (its forward kinematics).
         obstacles: The obstacles to draw (default: the report's cylinder).
         rate_hz: Sampling rate of the lines [Hz] (at most :data:`MAX_PLOT_POINTS` samples).
         title: Figure title.
@@ -158,8 +164,8 @@ def plot_tool_paths(
     extent = [obstacle_extent_mm(obstacles)]
     for label, traj in trajectories.items():
         t = np.append(traj.times_at_rate(_plot_rate(traj, rate_hz)), traj.duration)
-        path = tool_pose(traj.sample(t).q).position
-        marks = tool_pose(traj.sample(traj.times_per_segment(REPORT_STEPS)).q).position * 1e3
+        path = tool(traj.sample(t).q)
+        marks = tool(traj.sample(traj.times_per_segment(REPORT_STEPS)).q) * 1e3
         hit = " — tool crosses the obstacle" if inside_any(path, obstacles).any() else ""
         p = path * 1e3
         extent.append(p)
@@ -170,8 +176,8 @@ def plot_tool_paths(
         ax2.plot(p[:, 0], p[:, 1], lw=1.4, color=line.get_color())
         ax2.plot(marks[:, 0], marks[:, 1], ".", ms=4, color=line.get_color())
     draw_obstacles_3d(ax3, obstacles)
-    poses = tool_poses(first.waypoints)
-    targets = np.array([pose.position for pose in poses]) * 1e3
+    names = first.waypoints.names
+    targets = tool(first.waypoints.q) * 1e3
     ax3.scatter(
         targets[:, 0],
         targets[:, 1],
@@ -181,9 +187,9 @@ def plot_tool_paths(
         facecolors="none",
         edgecolors="k",
     )
-    for pose, xyz in zip(poses, targets):
-        ax3.text(xyz[0], xyz[1], xyz[2] + 15.0, pose.name, fontsize=9)
-        ax2.annotate(pose.name, xyz[:2], textcoords="offset points", xytext=(5, 5), fontsize=9)
+    for name, xyz in zip(names, targets):
+        ax3.text(xyz[0], xyz[1], xyz[2] + 15.0, name, fontsize=9)
+        ax2.annotate(name, xyz[:2], textcoords="offset points", xytext=(5, 5), fontsize=9)
     ax2.plot(targets[:, 0], targets[:, 1], "ko", mfc="none", ms=7)
     draw_obstacles_top(ax2, obstacles)
     ax2.plot(0.0, 0.0, "k+", ms=10)

@@ -1,20 +1,33 @@
-"""The arm's record: an arm task's motion, its poses through a trajectory of any type."""
+"""The arm's record: its task's motions (every trajectory type), planning, simulation, real arm."""
 
 from __future__ import annotations
 
-from lynxsim.arm.motion import ARM_LIMITS
+from lynxsim.arm.motion import ARM_KINEMATICS, ARM_LIMITS
 from lynxsim.arm.motion import build_trajectory as build_from_poses
+from lynxsim.arm.motion.planning import arm_plan_request
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import instance
+from lynxsim.plan.request import PlanRequest
 from lynxsim.poses import ArmPose, JointPose
-from lynxsim.robots import RobotParts
+from lynxsim.registry import info
+from lynxsim.robots.catalog import register
+from lynxsim.robots.robot import Robot
+from lynxsim.run_options import NO_OBSTACLE
 from lynxsim.tasks import Task
 from lynxsim.traj.build import parse_kind
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import JointLimits
 from lynxsim.traj.trajectory import Trajectory
 
-__all__ = ["ROBOT", "build_trajectory"]
+__all__ = ["ROBOT", "build_trajectory", "plan_request"]
+
+
+def _arm_poses(task: Task, what: str) -> tuple[ArmPose | JointPose, ...]:
+    task = instance(task, Task, "task")
+    poses = tuple(p for p in task.poses if isinstance(p, ArmPose | JointPose))
+    if len(poses) != len(task.poses):
+        raise InvalidInputError(f"task {task.name!r} is for robot {task.robot!r}; {what}")
+    return poses
 
 
 def build_trajectory(
@@ -22,7 +35,7 @@ def build_trajectory(
     kind: TrajectoryKind | str | None = None,
     limits: JointLimits | None = None,
 ) -> Trajectory:
-    """The trajectory of a task, of its own type or another.
+    """The trajectory of a task, of its own type or another (every type but ``planned``).
 
     Args:
         task: The task (see :func:`lynxsim.tasks.load_task`).
@@ -36,14 +49,9 @@ def build_trajectory(
         InvalidInputError: The task is not for the arm, or the type is unknown.
         LynxsimError: Whatever the generator raises (unreachable pose, limits).
     """
-    task = instance(task, Task, "task")
-    if not all(isinstance(p, ArmPose | JointPose) for p in task.poses):
-        raise InvalidInputError(
-            f"task {task.name!r} is for robot {task.robot!r}; joint trajectories are built "
-            "from arm poses only"
-        )
+    poses = _arm_poses(task, "joint trajectories are built from arm poses only")
     return build_from_poses(
-        task.poses,
+        poses,
         task.trajectory if kind is None else parse_kind(kind),
         task.durations,
         limits=ARM_LIMITS if limits is None else limits,
@@ -52,9 +60,31 @@ def build_trajectory(
     )
 
 
-ROBOT = RobotParts(
-    motion=build_trajectory,
-    model="lynx_arm/scene.xml",
-    adapter="lynxsim.sim.arm.adapter:ADAPTER",
+def plan_request(task: Task) -> PlanRequest:
+    """The planning problem of an arm task (:func:`lynxsim.arm.motion.planning.arm_plan_request`).
+
+    With a cube in the scene the cube is held on every segment (the playback
+    grips before the motion and releases after it).
+
+    Raises:
+        InvalidInputError: Not an arm task.
+        UnreachablePoseError: A pose has no IK solution.
+    """
+    poses = _arm_poses(task, "not the arm")
+    return arm_plan_request(poses, grasped=task.scene.cube is not None)
+
+
+ROBOT = register(
+    Robot(
+        info=info("arm"),
+        kinds=tuple(TrajectoryKind),
+        motion=build_trajectory,
+        sim="lynxsim.sim.arm.adapter:ADAPTER",
+        cameras=("front", "top"),
+        run_options=(NO_OBSTACLE,),
+        kinematics=ARM_KINEMATICS,
+        planning=plan_request,
+        real="lynxsim.sim.arm.ssc32:BACKEND",
+    )
 )
 """The arm's record (its row: :mod:`lynxsim.registry`)."""

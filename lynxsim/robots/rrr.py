@@ -5,9 +5,17 @@ from __future__ import annotations
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import instance
 from lynxsim.poses import PlanarPose
-from lynxsim.robots import RobotParts
+from lynxsim.registry import info
+from lynxsim.robots.catalog import register
+from lynxsim.robots.robot import Robot
 from lynxsim.rrr.build import build_path
-from lynxsim.rrr.path import DEFAULT_PLATFORM_LIMITS, PlatformLimits, PlatformPath
+from lynxsim.rrr.modes import MODE_OPTION
+from lynxsim.rrr.path import (
+    DEFAULT_PLATFORM_LIMITS,
+    RRR_TRAJECTORY_KINDS,
+    PlatformLimits,
+    PlatformPath,
+)
 from lynxsim.tasks import Task
 from lynxsim.traj.kinds import TrajectoryKind
 
@@ -54,9 +62,14 @@ def path_from_task(
     )
 
 
-ROBOT = RobotParts(
-    motion=path_from_task,
-    model="rrr/scene.xml",
-    adapter="lynxsim.sim.rrr.adapter:ADAPTER",
+ROBOT = register(
+    Robot(
+        info=info("rrr"),
+        kinds=RRR_TRAJECTORY_KINDS,
+        motion=path_from_task,
+        sim="lynxsim.sim.rrr.adapter:ADAPTER",
+        cameras=("top", "front"),
+        run_options=(MODE_OPTION,),
+    )
 )
 """The 3-RRR's record (its row: :mod:`lynxsim.registry`)."""

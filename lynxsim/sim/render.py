@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import os
 from dataclasses import dataclass, field
 from types import TracebackType
 
@@ -33,7 +32,6 @@ __all__ = [
     "RenderSettings",
     "SceneRenderer",
     "camera_names",
-    "model_cameras",
     "simplify_polyline",
 ]
 
@@ -176,15 +174,6 @@ class PathTrace:
 def camera_names(model: mujoco.MjModel) -> tuple[str, ...]:
     """The names of a model's cameras, in id order."""
     return tuple(model.camera(i).name for i in range(model.ncam))
-
-
-def model_cameras(path: str | os.PathLike[str]) -> tuple[str, ...]:
-    """The cameras of the model in an MJCF file, in id order (the file is compiled).
-
-    Raises:
-        ValueError: MuJoCo cannot load the file.
-    """
-    return camera_names(mujoco.MjModel.from_xml_path(os.fspath(path)))
 
 
 class SceneRenderer:

@@ -1,4 +1,4 @@
-"""Sweeps: many runs of the arm's tasks, varied, judged, tabled and mapped.
+"""Sweeps: many runs of the tasks of any robot in the table scene, varied, judged, tabled, mapped.
 
 A sweep file (:mod:`lynxsim.sweep.spec`) names tasks, trajectory types and
 what varies: where an obstacle stands (a grid or random placements), its
@@ -13,7 +13,6 @@ exact), which makes a map of thousands of placements cost about one run.
 Ray is never imported by this package itself.
 """
 
-from lynxsim.sim.arm.recorded import record_run
 from lynxsim.sim.recorded import RecordedRun, ReplayMismatchError
 from lynxsim.sim.sweep_judge import PlacementJudge, PlacementResults
 from lynxsim.sweep.runner import (
@@ -51,7 +50,6 @@ __all__ = [
     "load_sweep",
     "parse_sweep",
     "read_npz",
-    "record_run",
     "run_sweep",
     "shards",
     "write_csv",

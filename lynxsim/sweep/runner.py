@@ -8,9 +8,12 @@ for bit, in any process on the same build), so a backend may compute shards in
 this process, in a process pool (:class:`LocalBackend`) or as Ray tasks
 (:class:`lynxsim.sweep.ray_backend.RayBackend`).
 
-For waypoint types, a shard plays its group's run once without the swept
-obstacle and judges its placements on the recorded states
-(:mod:`lynxsim.sim.arm.recorded`, :mod:`lynxsim.sim.sweep_judge`); planned runs,
+The tasks may be of any robot that stands in the table scene; each shard asks
+the task's robot (:func:`lynxsim.robots.get`) for its motions and its
+simulation side (:func:`lynxsim.robots.simulation`). For waypoint types, a
+shard plays its group's run once without the swept obstacle and judges its
+placements on the recorded states (the adapter's
+:meth:`~lynxsim.sim.adapter.SimAdapter.record`, :mod:`lynxsim.sim.sweep_judge`); planned runs,
 whose path depends on where the obstacle stands, are planned and played row by
 row, and a sweep without an obstacle plays each row.
 
@@ -34,14 +37,15 @@ from lynxsim.bounds import MAX_JOBS
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import file_stem, safe_stem
 from lynxsim.inputs import count
+from lynxsim.robots import get, motion, plan, restore, rows, simulation
 from lynxsim.scene import Box, Obstacle, Scene
-from lynxsim.sim.arm.recorded import arm_scene_model, record_run
 from lynxsim.sim.report import RunReport
 from lynxsim.sim.sweep_judge import PlacementJudge
 from lynxsim.sweep.spec import SweepSpec
 from lynxsim.sweep.table import Table, concat, empty, read_npz, write_npz
 from lynxsim.tasks import Task
-from lynxsim.traj import Trajectory, TrajectoryKind
+from lynxsim.traj import TrajectoryKind
+from lynxsim.traj.motion import Motion
 from lynxsim.verdicts import Verdict
 
 __all__ = [
@@ -213,20 +217,18 @@ def _placed(task: Task, obstacle: Obstacle, x_m: float, y_m: float) -> Task | No
     return dataclasses.replace(task, scene=scene)
 
 
-def _trajectory(task: Task, kind: TrajectoryKind, seed: int) -> Trajectory:
-    from lynxsim.sim.arm.planning import plan_task, task_trajectory
-
+def _motion(task: Task, kind: TrajectoryKind, seed: int) -> Motion:
+    robot = get(task.robot)
     if kind is TrajectoryKind.PLANNED:
-        return plan_task(task, seed=seed).trajectory
-    return task_trajectory(task, kind)
+        return plan(robot, task, seed=seed).trajectory
+    return motion(robot, task, kind)
 
 
 def _physics_rows(
     table: Table, spec: SweepSpec, shard: Shard, task: Task, obstacle: Obstacle | None
 ) -> None:
     """Each row planned (if planned) and played on its own."""
-    from lynxsim.sim.arm.task import run_arm_trajectory
-
+    adapter = simulation(get(task.robot))
     kind, seed = shard.group.kind, shard.group.seed
     for i in range(shard.rows):
         placed: Task | None = task
@@ -239,8 +241,7 @@ def _physics_rows(
             table["verdict"][i], table["method"][i] = Verdict.INVALID.label, "none"
             continue
         try:
-            trajectory = _trajectory(placed, kind, seed)
-            report = run_arm_trajectory(trajectory, task=placed.name, scene=placed.scene).report
+            report = adapter.play(placed, _motion(placed, kind, seed)).report
         except LynxsimError:
             table["verdict"][i], table["method"][i] = Verdict.NO_MOTION.label, "none"
             continue
@@ -258,17 +259,17 @@ def _recorded_rows(
     """The group's run recorded without the obstacle; each placement judged on it."""
     if spec.obstacle is None:
         raise InvalidInputError("a sweep without an obstacle has no placements to judge")
+    adapter = simulation(get(task.robot))
     others = tuple(o for o in task.scene.obstacles if o.name != obstacle.name)
     try:
         base = Scene(others, task.scene.table, task.scene.cube)
-        trajectory = _trajectory(task, shard.group.kind, -1)
-        run = record_run(trajectory, task=task.name, scene=base)
+        run = adapter.record(task, _motion(task, shard.group.kind, -1), base)
     except LynxsimError:
         table["verdict"][:], table["method"][:] = Verdict.NO_MOTION.label, "none"
         return
     if hook is not None:
         hook(shard.index)
-    judged = PlacementJudge(run, obstacle, arm_scene_model).judge(
+    judged = PlacementJudge(run, obstacle, adapter.scene_model).judge(
         spec.obstacle.x_mm[shard.start : shard.stop] / 1000.0,
         spec.obstacle.y_mm[shard.start : shard.stop] / 1000.0,
     )
@@ -378,7 +379,12 @@ class LocalBackend:
                 done(shard, compute_shard(spec, shard, hook))
             return
         context = multiprocessing.get_context("spawn")  # no forked MuJoCo state
-        with ProcessPoolExecutor(max_workers=self.jobs, mp_context=context) as pool:
+        with ProcessPoolExecutor(
+            max_workers=self.jobs,
+            mp_context=context,
+            initializer=restore,  # each worker knows the robots registered here
+            initargs=(rows(),),
+        ) as pool:
             pending: dict[Future[Table], Shard] = {}
             queue: Iterator[Shard] = iter(todo)
             for shard in _take(queue, 2 * self.jobs):

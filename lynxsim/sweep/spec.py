@@ -7,7 +7,8 @@ a :class:`SweepFileError` naming the file and the field. Example::
     name = "report_obstacle_map"     # optional; default the file's stem
     description = "Where may the cylinder stand?"
     tasks = ["../tasks/pick_and_place.toml", "../tasks/obstacle_avoidance.toml"]
-                                     # task files, relative to this file (arm tasks)
+                                     # task files, relative to this file (robots of the
+                                     # table scene)
     types = ["free", "cubic", "quintic", "lspb", "line", "ruckig"]
                                      # or "waypoint" (every type but planned), "all"
     planner_seeds = [0]              # planned only: one plan per seed (default [0])
@@ -146,7 +147,7 @@ class SweepSpec:
     Attributes:
         name: Sweep name (output file stems are made from it, never folders).
         description: Free text.
-        tasks: The arm tasks.
+        tasks: The tasks (of robots that stand in the table scene).
         task_files: Their files, as given (resolved against the sweep file's folder).
         kinds: The trajectory types.
         planner_seeds: Seeds of the planned runs.

@@ -30,7 +30,7 @@ _ELSEWHERE = {
     "kinematics, not joint waypoints: the arm's are built by lynxsim.arm.motion "
     "(cartesian_line, or generate with its poses)",
     TrajectoryKind.PLANNED: "planned trajectories are searched around a scene's obstacles, "
-    "not generated through given waypoints: use lynxsim.sim.arm.planning.plan_task",
+    "not generated through given waypoints: use lynxsim.robots.plan",
 }
 
 

@@ -73,4 +73,4 @@ WAYPOINT_KINDS: tuple[TrajectoryKind, ...] = tuple(
     k for k in TrajectoryKind if k is not TrajectoryKind.PLANNED
 )
 """The types generated through given waypoints (every type but ``planned``, which is
-searched around a scene's obstacles by :mod:`lynxsim.sim.arm.planning`)."""
+searched around a scene's obstacles by :func:`lynxsim.robots.plan`)."""

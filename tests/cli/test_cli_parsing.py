@@ -14,6 +14,7 @@ import pytest
 
 from lynxsim.cli import build_parser, main, play
 from lynxsim.cli.flags import DEFAULT_QUALITY
+from lynxsim.robots import get
 from lynxsim.sim.quality import Quality
 from lynxsim.tasks import load_task
 
@@ -286,7 +287,7 @@ def test_flags_of_the_other_robot_are_refused(cli, argv, message):
 )
 def test_flags_of_the_tasks_robot_pass_the_check(argv):
     args = build_parser().parse_args(argv)
-    play._check_flags(args, load_task(args.task))
+    play._check_flags(args, get(load_task(args.task).robot))
 
 
 def test_demo_and_play_share_one_quality_flag():

@@ -55,7 +55,7 @@ def test_unknown_planner_lists_the_planners(cli, tmp_path):
 def test_plan_refuses_a_3rrr_task_and_a_tiny_margin(cli, tmp_path):
     result = cli("plan", str(TASKS / "rrr_closed_curve.toml"), "--out-dir", str(tmp_path))
     assert result.code == 1
-    assert "not the arm" in result.err
+    assert "which does not plan; robots that plan: arm" in result.err
     assert result.err.count("\n") == 1
     result = cli("plan", str(TASKS / "pick_and_place.toml"), "--margin-mm", "0.01")
     assert result.code == 2

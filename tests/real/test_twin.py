@@ -9,7 +9,8 @@ import pytest
 
 from lynxsim.real.arm import load_arm_calibration
 from lynxsim.real.board import FRAME_S
-from lynxsim.sim.arm.planning import task_trajectory
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.sim.arm.ssc32 import dead_band, run_twin, servo_targets
 from lynxsim.tasks import find_tasks
 from tests.helpers import assert_close
@@ -27,13 +28,13 @@ def test_the_dead_band_holds_changes_inside_it_and_follows_with_half_its_width()
 
 
 def test_servo_targets_hold_each_20_ms_frame():
-    traj = task_trajectory(ARM_TASKS[0])
+    traj = motion(ARM, ARM_TASKS[0])
     from lynxsim.real.deviation import board_motion
     from lynxsim.real.stream import command_stream
 
-    motion = board_motion(command_stream(traj, CAL), CAL)
+    board = board_motion(command_stream(traj, CAL), CAL)
     t = np.arange(0.0, 1.0, 0.002)
-    q = servo_targets(motion, CAL, t)
+    q = servo_targets(board, CAL, t)
     frames = np.floor(t / FRAME_S + 1e-9)
     for k in np.unique(frames):
         rows = q[frames == k]
@@ -42,7 +43,7 @@ def test_servo_targets_hold_each_20_ms_frame():
 
 @pytest.mark.parametrize("task", ARM_TASKS, ids=[t.name for t in ARM_TASKS])
 def test_the_twin_keeps_the_verdicts_of_ideal_playback_and_reports_the_extra_error(task):
-    run = run_twin(task, task_trajectory(task), CAL)
+    run = run_twin(task, motion(ARM, task), CAL)
     c = run.comparison
     assert c.same_verdicts, c.lines()
     assert c.ideal.collided == c.twin.collided
@@ -63,6 +64,6 @@ def test_obstacle_avoidance_through_waypoint_moves_collides_in_the_twin():
     from lynxsim.real.stream import StreamOptions
 
     task = next(t for t in ARM_TASKS if t.name == "obstacle_avoidance")
-    run = run_twin(task, task_trajectory(task), CAL, StreamOptions(mode="waypoints"))
+    run = run_twin(task, motion(ARM, task), CAL, StreamOptions(mode="waypoints"))
     assert not run.comparison.ideal.collided
     assert run.comparison.twin.collided

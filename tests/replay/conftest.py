@@ -22,9 +22,10 @@ import mujoco
 import numpy as np
 import pytest
 
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.robots.rrr import path_from_task
 from lynxsim.sim.arm.model import load_arm_scene
-from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.render import RenderSettings
 from lynxsim.sim.rrr.playback import start_model
@@ -73,7 +74,7 @@ class ReplayRun:
 
 def _arm_run(folder: Path, task_file: str, kind: str) -> ReplayRun:
     task = load_task(TASKS / task_file)
-    trajectory = task_trajectory(task, kind)
+    trajectory = motion(ARM, task, kind)
     replay = folder / f"{task.name}_{kind}{REPLAY_SUFFIX}"
     playback = run_arm_trajectory(trajectory, task=task.name, scene=task.scene, replay=replay)
     page = page_from_file(replay, folder / f"{task.name}_{kind}.html")

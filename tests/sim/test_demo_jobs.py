@@ -6,11 +6,10 @@ import functools
 
 import pytest
 
-from lynxsim.demo.arm import arm_jobs, arm_runs, run_arm_demo
 from lynxsim.demo.jobs import Job, run_jobs
+from lynxsim.demo.runs import demo_jobs, demo_runs, run_demo
 from lynxsim.sim.render import Quality, RenderSettings
 from lynxsim.tasks import load_task
-from lynxsim.traj import TrajectoryKind
 from tests.helpers import short_arm_task
 
 SMALL = RenderSettings(width=160, height=128, quality=Quality.FAST, fps=10)
@@ -48,8 +47,8 @@ def test_a_failing_job_raises_its_error_from_the_pool():
 def test_arm_jobs_are_the_runs_then_one_path_comparison_per_task(tmp_path):
     path = tmp_path / "short.toml"
     path.write_text(short_arm_task())
-    runs = list(arm_runs([load_task(path)], lambda m: None))
-    jobs = arm_jobs(runs, tmp_path, SMALL)
+    runs = list(demo_runs([load_task(path)], lambda m: None))
+    jobs = demo_jobs(runs, tmp_path, SMALL)
     assert [j.name for j in jobs] == [r.stem for r in runs] + ["short_paths"]
     assert all(j.cost > jobs[-1].cost for j in jobs[:-1])  # runs render, the comparison draws
 
@@ -58,11 +57,11 @@ def test_arm_jobs_are_the_runs_then_one_path_comparison_per_task(tmp_path):
 def test_parallel_runs_match_sequential_runs(tmp_path):
     path = tmp_path / "short.toml"
     path.write_text(short_arm_task())
-    runs = [r for r in arm_runs([load_task(path)], lambda m: None)
-            if r.trajectory.kind in (TrajectoryKind.QUINTIC, TrajectoryKind.CUBIC)]  # fmt: skip
-    one = run_arm_demo(runs, tmp_path / "one", SMALL, jobs=1)
+    runs = [r for r in demo_runs([load_task(path)], lambda m: None)
+            if r.motion.label in ("quintic", "cubic")]  # fmt: skip
+    one = run_demo(runs, tmp_path / "one", SMALL, jobs=1)
     done = []
-    two = run_arm_demo(runs, tmp_path / "two", SMALL, lambda k, f: done.append(k + f), jobs=2)
+    two = run_demo(runs, tmp_path / "two", SMALL, lambda k, f: done.append(k + f), jobs=2)
     assert [r.to_dict() for r in one] == [r.to_dict() for r in two]
     assert done == [1.0, 2.0, 3.0]  # two runs and the path comparison
     names = sorted(p.name for p in (tmp_path / "one").rglob("*") if p.is_file())

@@ -12,9 +12,10 @@ import pytest
 from lynxsim.arm import LYNX_ARM
 from lynxsim.arm.motion import arm_lipschitz, joint_radii
 from lynxsim.plan import StartInCollisionError
+from lynxsim.robots import motion, plan
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.scene import Cylinder
 from lynxsim.sim.arm.model import SceneIds, load_arm_scene
-from lynxsim.sim.arm.planning import plan_task, task_trajectory
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.planning import DEFAULT_MARGIN_M, PLANNING_CAP_M, CheckerOracle
@@ -32,7 +33,7 @@ error (the README's tool errors stay under 2 mm) and the fingers closing on the 
 @pytest.mark.parametrize("name", ["pick_and_place", "obstacle_avoidance", "three_obstacles"])
 def test_planned_motion_is_clear_in_the_physics_run(name):
     task = load_task(TASKS / f"{name}.toml")
-    trajectory = task_trajectory(task, TrajectoryKind.PLANNED)
+    trajectory = motion(ARM, task, TrajectoryKind.PLANNED)
     assert trajectory.kind is TrajectoryKind.PLANNED
     report = run_arm_trajectory(trajectory, task=name, scene=task.scene).report
     assert not report.collided
@@ -45,7 +46,7 @@ def test_planned_motion_is_clear_in_the_physics_run(name):
 
 def test_three_obstacles_block_quintic_and_not_planned():
     task = load_task(TASKS / "three_obstacles.toml")
-    quintic = task_trajectory(task, TrajectoryKind.QUINTIC)
+    quintic = motion(ARM, task, TrajectoryKind.QUINTIC)
     checker = arm_checker(load_arm_scene(task.scene))
     commanded = checker.check(
         quintic.sample(np.arange(0.0, quintic.duration, 0.002)).q, grasped=True
@@ -54,7 +55,7 @@ def test_three_obstacles_block_quintic_and_not_planned():
     played = run_arm_trajectory(quintic, task="q", scene=task.scene).report
     assert played.collided
     planned = run_arm_trajectory(
-        task_trajectory(task, TrajectoryKind.PLANNED), task="p", scene=task.scene
+        motion(ARM, task, TrajectoryKind.PLANNED), task="p", scene=task.scene
     ).report
     assert not planned.collided
     assert (
@@ -64,7 +65,7 @@ def test_three_obstacles_block_quintic_and_not_planned():
 
 def test_same_task_and_seed_give_the_same_trajectory_bit_for_bit():
     task = load_task(TASKS / "obstacle_avoidance.toml")
-    a, b = (plan_task(task, seed=3).trajectory for _ in range(2))
+    a, b = (plan(ARM, task, seed=3).trajectory for _ in range(2))
     t = np.linspace(0.0, a.duration, 2001)
     assert a.duration == b.duration
     for x, y in zip(a.sample(t), b.sample(t)):
@@ -73,10 +74,10 @@ def test_same_task_and_seed_give_the_same_trajectory_bit_for_bit():
 
 def test_every_timed_sample_keeps_half_the_margin_by_the_checker():
     task = load_task(TASKS / "three_obstacles.toml")
-    motion = plan_task(task, seed=1)
+    planned = plan(ARM, task, seed=1)
     oracle = CheckerOracle(arm_checker(load_arm_scene(task.scene)))
-    t = np.arange(0.0, motion.trajectory.duration, 0.002)
-    clearance = oracle.clearance(motion.trajectory.sample(t).q, grasped=True)
+    t = np.arange(0.0, planned.trajectory.duration, 0.002)
+    clearance = oracle.clearance(planned.trajectory.sample(t).q, grasped=True)
     assert clearance.min() >= DEFAULT_MARGIN_M / 2
 
 
@@ -142,4 +143,4 @@ def test_a_start_inside_the_margin_names_the_segment():
     with pytest.raises(
         StartInCollisionError, match=r"^segment 'P1 -> V1': the start .* has clearance"
     ):
-        plan_task(crowded)
+        plan(ARM, crowded)

@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.scene import Scene
-from lynxsim.sim.arm.planning import task_trajectory
 from lynxsim.sim.arm.recorded import arm_scene_model, record_run
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.sweep_judge import PlacementJudge
@@ -23,7 +24,7 @@ TASKS = Path(__file__).resolve().parents[2] / "tasks"
 @pytest.mark.parametrize("name", ["box", "sphere"])
 def test_judged_box_and_sphere_placements_equal_their_own_runs(name):
     task = load_task(TASKS / "three_obstacles.toml")
-    trajectory = task_trajectory(task, "line")
+    trajectory = motion(ARM, task, "line")
     obstacle = task.scene.obstacle(name)
     others = tuple(o for o in task.scene.obstacles if o.name != name)
     run = record_run(

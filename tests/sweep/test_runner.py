@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from lynxsim.errors import InvalidInputError
-from lynxsim.sim.arm.planning import task_trajectory
+from lynxsim.robots import motion
+from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sweep.maps import write_maps
 from lynxsim.sweep.runner import LocalBackend, compute_shard, groups, run_sweep, shards
@@ -102,7 +103,7 @@ def test_planned_rows_and_sweeps_without_an_obstacle_are_played_row_by_row(tmp_p
     assert table["method"].tolist() == ["physics", "physics"]
     assert table["cube_y_m"].tolist() == [0.3, 0.29]
     task = load_task(TASKS / "obstacle_avoidance.toml")
-    own = run_arm_trajectory(task_trajectory(task, "line"), task=task.name, scene=task.scene)
+    own = run_arm_trajectory(motion(ARM, task, "line"), task=task.name, scene=task.scene)
     assert table["min_clearance_m"][0] == own.report.min_clearance_m
 
 

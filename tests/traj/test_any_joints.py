@@ -54,7 +54,7 @@ def test_every_joint_type_moves_any_number_of_joints_within_its_limits(kind, n):
 
 @pytest.mark.parametrize(
     ("kind", "where"),
-    [("line", r"lynxsim\.arm\.motion"), ("planned", r"lynxsim\.sim\.arm\.planning\.plan_task")],
+    [("line", r"lynxsim\.arm\.motion"), ("planned", r"lynxsim\.robots\.plan")],
 )
 def test_types_that_need_a_robot_are_refused_with_where_they_are_built(kind, where):
     bounds, limits = _robot(2)

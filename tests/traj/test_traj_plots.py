@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lynxsim.arm.motion import cubic, free_motion, quintic
+from lynxsim.arm.motion import ARM_KINEMATICS, cubic, free_motion, quintic
 from lynxsim.plots.obstacles import inside_any
 from lynxsim.plots.trajectory import plot_joint_profiles, plot_tool_paths
 from lynxsim.scene import REPORT_CYLINDER
@@ -28,7 +28,12 @@ def test_joint_profiles_png(tmp_path):
 
 def test_tool_paths_png(tmp_path):
     dest = tmp_path / "paths.png"
-    plot_tool_paths({"cubic": cubic(Q, 1.0), "quintic": quintic(Q, 1.0)}, dest, rate_hz=50.0)
+    plot_tool_paths(
+        {"cubic": cubic(Q, 1.0), "quintic": quintic(Q, 1.0)},
+        dest,
+        tool=ARM_KINEMATICS.tool_points,
+        rate_hz=50.0,
+    )
     assert dest.read_bytes().startswith(PNG_MAGIC)
 
 

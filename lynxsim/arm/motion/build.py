@@ -52,7 +52,7 @@ def generate(
 
     Raises:
         InvalidInputError: Unknown type, ``planned`` (searched around a scene's
-            obstacles: :func:`lynxsim.sim.arm.planning.plan_task`), ``pass_through``
+            obstacles: :func:`lynxsim.robots.plan`), ``pass_through``
             not a bool or given for a type that stops.
         LynxsimError: Whatever the generator raises (see each generator).
     """
