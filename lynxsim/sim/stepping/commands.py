@@ -68,8 +68,11 @@ def _check_ranges(
     """Refuse commands outside the actuators' control ranges (= joint ranges).
 
     Sample ``k`` is the target of the step that ends at ``(k + 1) dt``, the time named.
+    An actuator without a control range (``ctrllimited`` false) takes any command.
     """
-    lo, hi = np.asarray(model.actuator_ctrlrange)[binding.actuator_ids].T
+    lo, hi = np.asarray(model.actuator_ctrlrange, dtype=float)[binding.actuator_ids].T
+    limited = np.asarray(model.actuator_ctrllimited)[binding.actuator_ids] != 0
+    lo, hi = np.where(limited, lo, -np.inf), np.where(limited, hi, np.inf)
     excess = np.maximum(lo - q_cmd, q_cmd - hi)  # (T, n), > 0 outside
     k, j = np.unravel_index(int(np.argmax(excess)), excess.shape)
     worst = float(excess[k, j])
