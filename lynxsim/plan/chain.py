@@ -175,6 +175,7 @@ def plan_through(
         labels=names,
         max_repairs=max_repairs,
         pose_names=pose_names,
+        screen=search_oracle,
     )
     if progress is not None:
         progress(PlanProgress(count, count, "", "done", time.perf_counter() - started))

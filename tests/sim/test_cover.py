@@ -13,15 +13,21 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from lynxsim.arm import LYNX_ARM
+from lynxsim.arm.motion import arm_lipschitz
+from lynxsim.errors import InvalidInputError
+from lynxsim.plan import check_path
 from lynxsim.plan.cover import CoverOracle
+from lynxsim.plan.cover.search import FOUND
 from lynxsim.plan.cover.world import GEOM_BOX, GEOM_CAPSULE, GEOM_CYLINDER, GEOM_SPHERE
 from lynxsim.scene import TABLE, Box, Cylinder, Scene, Sphere
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.cover import DEFAULT_SLACK_M, cover_geom, cover_world
-from lynxsim.sim.planning import PLANNING_CAP_M
+from lynxsim.sim.planning import PLANNING_CAP_M, CheckerOracle, cover_oracle
 
 CONFIGS_PER_SHAPE = 100_000
 PLACEMENTS = 4
@@ -145,3 +151,52 @@ def test_the_cover_follows_mujoco_kinematics_of_the_cube_held():
     assert (c[free] <= e[free] + 1e-9).all()
     # A tight cover: far from everything its clearance is the exact one less its slack.
     assert np.median(e[free] - c[free]) < 2 * DEFAULT_SLACK_M
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    kind=st.sampled_from([GEOM_BOX, GEOM_CAPSULE, GEOM_SPHERE]),
+    size=st.tuples(*[st.floats(0.001, 0.08)] * 3),
+)
+def test_any_primitive_is_enclosed_by_its_cover(kind, size):
+    cover = cover_geom(kind, size)
+    s = np.array(size)
+    rng = np.random.default_rng(1)
+    reach = s if kind == GEOM_BOX else np.array([s[0], s[0], s[1] + s[0]])
+    if kind == GEOM_SPHERE:
+        reach = np.full(3, s[0])
+    points = rng.uniform(-reach, reach, size=(4000, 3))
+    points = points[_inside(kind, s, points)]
+    d = np.linalg.norm(points[:, None, :] - cover.centres[None], axis=2) - cover.radii
+    assert (d.min(axis=1) <= 1e-12).all()
+
+
+def test_bad_geoms_get_typed_errors():
+    with pytest.raises(InvalidInputError, match="geom type 4"):
+        cover_geom(4, (0.1, 0.1, 0.1))
+    with pytest.raises(InvalidInputError, match="positive"):
+        cover_geom(GEOM_BOX, (0.1, -0.1, 0.1))
+    with pytest.raises(InvalidInputError, match="3 finite"):
+        cover_geom(GEOM_BOX, (0.1, np.nan, 0.1))
+
+
+def test_a_compiled_path_is_certified_on_the_exact_checker_and_repeats_bit_for_bit():
+    obstacles = (Box("wall", (0.2, 0.0, 0.1), size=(0.03, 0.25, 0.2)),)
+    checker = arm_checker(load_arm_scene(Scene(obstacles, TABLE, cube=None)))
+    exact = CheckerOracle(checker)
+    start = np.array([-0.8, 1.2, -1.2, -0.5, 0.0])
+    goal = np.array([0.8, 1.2, -1.2, -0.5, 0.0])
+    paths = []
+    for _ in range(2):
+        cover = cover_oracle(checker)
+        assert cover is not None
+        found = cover.search(start, goal[None], LYNX_ARM.q_min, LYNX_ARM.q_max,
+                             lipschitz=arm_lipschitz(), margin_m=0.01, grasped=False, seed=4,
+                             shortcuts=30)  # fmt: skip
+        assert found.status == FOUND
+        paths.append(found.path)
+    assert np.array_equal(paths[0], paths[1])
+    assert np.array_equal(paths[0][0], start)
+    assert np.array_equal(paths[0][-1], goal)
+    verdict = check_path(paths[0], exact, lipschitz=arm_lipschitz(), margin_m=0.01, grasped=False)
+    assert verdict.clear.all()

@@ -23,6 +23,7 @@ model and groups (any robot: nothing here names one) into the arrays of a
 
 from __future__ import annotations
 
+import hashlib
 from dataclasses import dataclass
 
 import mujoco
@@ -96,8 +97,11 @@ def _joints_above(model: mujoco.MjModel, body: int) -> set[int]:
     return found
 
 
-def _may_collide(model: mujoco.MjModel, g1: int, g2: int) -> bool:
-    """Whether MuJoCo's collision filter lets geoms ``g1, g2`` through (predefined pairs apart)."""
+def _may_collide(model: mujoco.MjModel, g1: int, g2: int, excluded: frozenset[int]) -> bool:
+    """Whether MuJoCo's collision filter lets geoms ``g1, g2`` through (predefined pairs apart).
+
+    ``excluded`` holds the signatures ``(body1 << 16) + body2`` of excluded body pairs.
+    """
     ct, ca = model.geom_contype, model.geom_conaffinity
     if not ((ct[g1] & ca[g2]) or (ct[g2] & ca[g1])):
         return False
@@ -110,7 +114,6 @@ def _may_collide(model: mujoco.MjModel, g1: int, g2: int) -> bool:
     p2 = int(model.body_weldid[model.body_parentid[w2]])
     if filterparent and w1 != 0 and w2 != 0 and (w1 == p2 or w2 == p1):
         return False
-    excluded = {int(s) for s in np.asarray(model.exclude_signature).tolist()}
     return ((b1 << 16) + b2) not in excluded and ((b2 << 16) + b1) not in excluded
 
 
@@ -186,10 +189,12 @@ def cover_world(
         else:
             raise InvalidInputError(f"support geom {s} must be a plane or a box, got type {kind}")
         normals.append(n)
+    excluded = frozenset(int(x) for x in np.asarray(m.exclude_signature).tolist())
+    explicit = {frozenset((int(x), int(y))) for x, y in zip(m.pair_geom1, m.pair_geom2)}
     pairs, fpairs, tables, constant_hit = [], [], [], False
     for i, a in enumerate(robot):
         for b in robot[i + 1 :]:
-            if not _may_collide(m, a, b):
+            if not (_may_collide(m, a, b, excluded) or frozenset((a, b)) in explicit):
                 continue
             ja = _joints_above(m, int(m.geom_bodyid[a])) & planned
             jb = _joints_above(m, int(m.geom_bodyid[b])) & planned
@@ -210,7 +215,7 @@ def cover_world(
                 fpairs.append((moving.index(b), fixed.index(a)))
     for f in fixed:
         for s in np.flatnonzero(g.support).tolist():
-            if _may_collide(m, f, s):
+            if _may_collide(m, f, s, excluded):
                 constant_hit |= _distance(m, data, f, s, 0.01) <= 0.0
     rest = [min([cap_m] + [_distance(m, data, x, o, cap_m) for x in f for o in obstacles])
             for f in (fixed + payload, fixed)]  # fmt: skip
@@ -282,7 +287,41 @@ def cover_world(
     return world, report
 
 
+_TABLES: dict[bytes, tuple[float, float, npt.NDArray[np.int64]] | None] = {}
+"""Tables already made, by what they depend on (:func:`_table_key`): a robot's tables
+are the same in every scene."""
+_MAX_TABLES = 4096
+
+
+def _table_key(
+    model: mujoco.MjModel, base: FloatArray, mover: int, other: int, joint: int
+) -> bytes:
+    """Everything a pair's table depends on: the tree, the joints, the two geoms, the state."""
+    m = model
+    digest = hashlib.sha256()
+    for arr in (m.body_pos, m.body_quat, m.body_parentid, m.jnt_type, m.jnt_axis, m.jnt_pos,
+                m.jnt_range, m.jnt_limited, m.jnt_qposadr, m.qpos0, base, [joint]):  # fmt: skip
+        digest.update(np.ascontiguousarray(arr).tobytes())
+    for g in (mover, other):
+        for arr in (m.geom_bodyid[g], m.geom_type[g], m.geom_pos[g], m.geom_quat[g],
+                    m.geom_size[g], m.geom_rbound[g]):  # fmt: skip
+            digest.update(np.ascontiguousarray(arr).tobytes())
+    return digest.digest()
+
+
 def _tabulate(
+    model: mujoco.MjModel, base: FloatArray, mover: int, other: int, joint: int
+) -> tuple[float, float, npt.NDArray[np.int64]] | None:
+    """:func:`_table` of the pair, made once per process for what it depends on."""
+    key = _table_key(model, base, mover, other, joint)
+    if key not in _TABLES:
+        if len(_TABLES) >= _MAX_TABLES:
+            _TABLES.clear()
+        _TABLES[key] = _table(model, base, mover, other, joint)
+    return _TABLES[key]
+
+
+def _table(
     model: mujoco.MjModel, base: FloatArray, mover: int, other: int, joint: int
 ) -> tuple[float, float, npt.NDArray[np.int64]] | None:
     """Where over a hinge's range geom ``mover`` may touch ``other`` (their pose hangs on it).
