@@ -49,7 +49,10 @@ def _sweep(args: argparse.Namespace) -> int:
             bar.n = done
             bar.refresh()
 
-        outcome = run_sweep(spec, out, backend=backend, progress=progress)
+        def notice(line: str) -> None:
+            bar.write(f"lynxsim: {line}", file=sys.stderr)
+
+        outcome = run_sweep(spec, out, backend=backend, progress=progress, notice=notice)
     maps = [] if args.no_maps else write_maps(spec, outcome.table, out)
     table = outcome.table
     counts: dict[str, dict[str, dict[str, int]]] = {}
