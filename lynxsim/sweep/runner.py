@@ -38,6 +38,7 @@ from lynxsim.bounds import MAX_JOBS
 from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.fileio import file_stem
 from lynxsim.inputs import count
+from lynxsim.processes import pool_initializer
 from lynxsim.robots import get, motion, plan, restore, rows, simulation
 from lynxsim.scene import Box, Obstacle, Scene
 from lynxsim.sim.report import RunReport
@@ -356,6 +357,9 @@ class Backend(Protocol):
 class LocalBackend:
     """Shards computed in this process (``jobs == 1``) or in a pool of worker processes.
 
+    The workers end when this process dies, even by SIGKILL
+    (:func:`lynxsim.processes.die_with_parent`).
+
     Attributes:
         jobs: Worker processes (1: none), an integer from 1 to :data:`lynxsim.bounds.MAX_JOBS`.
 
@@ -381,11 +385,13 @@ class LocalBackend:
                 done(shard, compute_shard(spec, shard, hook))
             return
         context = multiprocessing.get_context("spawn")  # no forked MuJoCo state
+        # Each worker dies with this process and knows the robots registered here.
+        initializer, initargs = pool_initializer(restore, rows())
         with ProcessPoolExecutor(
             max_workers=self.jobs,
             mp_context=context,
-            initializer=restore,  # each worker knows the robots registered here
-            initargs=(rows(),),
+            initializer=initializer,
+            initargs=initargs,
         ) as pool:
             pending: dict[Future[Table], Shard] = {}
             queue: Iterator[Shard] = iter(todo)
