@@ -68,7 +68,7 @@ def test_sweep_writes_table_and_maps_inside_the_folder(cli, small, tmp_path):
         (["missing.toml"], 1, "No such file"),
         (["{small}", "--backend", "spark"], 2, "invalid choice"),
         (["{small}", "--jobs", "0"], 2, "must be between 1 and 256"),
-        (["{small}", "--address", "auto"], 1, "--address applies to --backend ray only"),
+        (["{small}", "--address", "auto"], 1, "--address and --verbose apply to --backend ray"),
     ],
     ids=["missing", "backend", "jobs", "address"],
 )
