@@ -394,6 +394,19 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
                 booleans, complex numbers, object arrays...) or has the wrong shape.
             NonFiniteInputError: The action holds NaN or infinity.
         """
+        command = self._command(action)
+        return self._outcome(command, self._simulate())
+
+    def _command(self, action: npt.ArrayLike) -> tuple[TargetStatus, bool]:
+        """Check an action and write its servo targets into ``data.ctrl`` (a step's first part).
+
+        Returns:
+            What became of the tool target, and whether it was held.
+
+        Raises:
+            InvalidInputError: As :meth:`step`.
+            NonFiniteInputError: As :meth:`step`.
+        """
         a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
@@ -407,12 +420,22 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         ctrl[self._arm_act] = self._controller.q_cmd
         if self._GRIPPER_ACTION:
             ctrl[self._grip_act] = (values[-1] + 1.0) * (0.5 * GRIPPER_OPEN_M)
-        collision = self._simulate()
+        return status, self._controller.target == before
 
+    def _outcome(
+        self, command: tuple[TargetStatus, bool], collision: bool
+    ) -> tuple[Obs, float, bool, bool, dict[str, Any]]:
+        """A step's result once its physics ran (its last part; :meth:`step` returns it).
+
+        Args:
+            command: What :meth:`_command` returned.
+            collision: Whether the arm or the cube touched an obstacle.
+        """
+        status, held = command
         obs = self._observation()
         if self._pixels is not None:
             obs["pixels"] = self._pixels.render(self.data)
-        info = self._info(obs, collision, status, held=self._controller.target == before)
+        info = self._info(obs, collision, status, held=held)
         terminated = collision and self.terminate_on_collision
         if self.render_mode == "human":
             self.render()
@@ -439,8 +462,12 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
 
     def _simulate(self) -> bool:
         """Run the control period's physics steps; True on arm–obstacle contact."""
-        every = self.collision_check is CollisionCheck.PHYSICS_STEP
-        return self._scene.simulate(self.frame_skip, every_step=every)
+        return self._scene.simulate(self.frame_skip, every_step=self._physics_step_contacts)
+
+    @property
+    def _physics_step_contacts(self) -> bool:
+        """Whether the contacts are tested after every physics step (else after the last)."""
+        return self.collision_check is CollisionCheck.PHYSICS_STEP
 
     def _touching_obstacle(self) -> bool:
         """Whether the arm or the cube touches an obstacle in the current contacts."""

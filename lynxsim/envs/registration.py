@@ -20,6 +20,11 @@ REACH_ID = "LynxReach-v1"
 
 _PICK_AND_PLACE = "lynxsim.envs.pick_and_place:PickAndPlaceEnv"
 _REACH = "lynxsim.envs.reach:ReachEnv"
+_VECTOR = {
+    _PICK_AND_PLACE: "lynxsim.envs.vector:pick_and_place_vector_env",
+    _REACH: "lynxsim.envs.vector:reach_vector_env",
+}
+"""The batched vector env of each env class (``vectorization_mode="vector_entry_point"``)."""
 _HOLD = {"target_fallback": "hold"}
 """v0: an infeasible tool request holds the previous target."""
 
@@ -41,5 +46,9 @@ def register_envs() -> None:
     for env_id, entry_point, steps, kwargs in _ENVS:
         if env_id not in gym.registry:
             gym.register(
-                id=env_id, entry_point=entry_point, max_episode_steps=steps, kwargs=dict(kwargs)
+                id=env_id,
+                entry_point=entry_point,
+                vector_entry_point=_VECTOR[entry_point],
+                max_episode_steps=steps,
+                kwargs=dict(kwargs),
             )
