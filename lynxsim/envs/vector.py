@@ -35,6 +35,7 @@ from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
 from lynxsim.envs.base import LynxArmEnv
+from lynxsim.envs.control import TargetStatus
 from lynxsim.envs.pick_and_place import PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.reward import GoalRewards
@@ -44,6 +45,8 @@ from lynxsim.sim.arm.env_batch import EnvBatch
 
 __all__ = ["MAX_ENVS", "LynxVectorEnv", "pick_and_place_vector_env", "reach_vector_env"]
 
+_SCALARS = (bool, int, float)
+"""Info value types batched in one go (``_add_info`` makes arrays of exactly these types)."""
 MAX_ENVS = 4096
 """Most envs one vector env may hold."""
 
@@ -83,6 +86,7 @@ class LynxVectorEnv(
         num_envs: int,
         max_episode_steps: int | None = None,
         nthread: int | None = None,
+        chunks: int = 4,
         **kwargs: Any,
     ) -> None:
         self.num_envs = count(num_envs, "num_envs", 1, MAX_ENVS)
@@ -109,6 +113,7 @@ class LynxVectorEnv(
         self.single_observation_space = first.observation_space
         self.observation_space = batch_space(first.observation_space, self.num_envs)
         self._physics = EnvBatch([env._scene for env in self.envs], nthread)
+        self._chunks = chunks
         spaces: gym.Space[Any] = first.observation_space
         self._keys: tuple[str, ...] = (
             tuple(spaces.spaces) if isinstance(spaces, gym.spaces.Dict) else ()
@@ -228,21 +233,33 @@ class LynxVectorEnv(
             raise InvalidInputError(f"actions must have shape {shape}, got {a.shape}")
         envs = self.envs
         going = [i for i in range(self.num_envs) if not self._ended[i]]
-        commands = [envs[i]._command(a[i]) for i in going]
-        first = envs[0]
-        hits = self._physics.simulate(
-            going, first.frame_skip, every_step=first._physics_step_contacts
-        )
         rewards = np.zeros(self.num_envs)
         terminated = np.zeros(self.num_envs, dtype=bool)
         truncated = np.zeros(self.num_envs, dtype=bool)
         infos: list[dict[str, Any] | None] = [None] * self.num_envs
+        commands: dict[int, tuple[TargetStatus, bool]] = {}
         limit = self.max_episode_steps
-        for i, command, hit in zip(going, commands, hits, strict=True):
-            obs, reward, term, _, info = envs[i]._outcome(command, hit)
-            self._obs[i], rewards[i], terminated[i], infos[i] = obs, reward, term, info
-            self._elapsed[i] += 1
-            truncated[i] = limit is not None and self._elapsed[i] >= limit
+
+        def before(part: Sequence[int]) -> None:
+            for i in part:
+                commands[i] = envs[i]._command(a[i])
+
+        def after(part: Sequence[int], hits: list[bool]) -> None:
+            for i, hit in zip(part, hits, strict=True):
+                obs, reward, term, _, info = envs[i]._outcome(commands[i], hit)
+                self._obs[i], rewards[i], terminated[i], infos[i] = obs, reward, term, info
+                self._elapsed[i] += 1
+                truncated[i] = limit is not None and self._elapsed[i] >= limit
+
+        first = envs[0]
+        self._physics.pipeline(
+            going,
+            first.frame_skip,
+            every_step=first._physics_step_contacts,
+            before=before,
+            after=after,
+            chunks=self._chunks,
+        )
         resetting = [i for i in range(self.num_envs) if self._ended[i]]
         for i in resetting:
             self._obs[i], infos[i] = envs[i].reset()
@@ -256,11 +273,28 @@ class LynxVectorEnv(
         return {k: np.stack([o[k] for o in self._obs]) for k in self._keys}
 
     def _infos(self, infos: list[dict[str, Any] | None]) -> dict[str, Any]:
-        """The infos of every env as ``SyncVectorEnv``'s ``_add_info`` batches them."""
-        out: dict[str, Any] = {}
-        for i, info in enumerate(infos):
+        """The infos of every env as ``SyncVectorEnv``'s ``_add_info`` batches them.
+
+        When every env has an info with the first one's keys, scalars of one
+        type per key (the step's infos), each key is batched in one go; otherwise
+        env by env through ``_add_info``.
+        """
+        first = infos[0]
+        if first is not None and all(i is not None and i.keys() == first.keys() for i in infos):
+            kinds = {k: type(v) for k, v in first.items()}
+            if all(kind in _SCALARS for kind in kinds.values()) and all(
+                type(v) is kinds[k] for i in infos if i is not None for k, v in i.items()
+            ):
+                every = np.ones(self.num_envs, dtype=bool)
+                out: dict[str, Any] = {}
+                for k, kind in kinds.items():
+                    out[k] = np.array([i[k] for i in infos if i is not None], dtype=kind)
+                    out[f"_{k}"] = every.copy()
+                return out
+        out = {}
+        for n, info in enumerate(infos):
             if info is not None:
-                out = self._add_info(out, info, i)
+                out = self._add_info(out, info, n)
         return out
 
     # ------------------------------------------------------- rendering, calls
@@ -284,6 +318,7 @@ class LynxVectorEnv(
 
     def close_extras(self, **kwargs: Any) -> None:
         """Close every env (their renderers)."""
+        self._physics.close()
         for env in self.envs:
             env.close()
 

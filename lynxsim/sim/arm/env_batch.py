@@ -13,7 +13,8 @@ any thread count, and :meth:`EnvScene.touching_obstacle` is the one contact test
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 
 import mujoco
 import numpy as np
@@ -68,6 +69,7 @@ class EnvBatch:
         self._batch = mjbatch.Batch(first, len(self._scenes), self.nthread, persistent=True)
         self._batch.set_models([s.model for s in self._scenes])
         self._rows = self._batch.state
+        self._helper: ThreadPoolExecutor | None = None
 
     def __len__(self) -> int:
         return len(self._scenes)
@@ -114,3 +116,59 @@ class EnvBatch:
                 batch.get_data(i, scene.data)
                 hits[k] = scene.touching_obstacle() or hits[k]
         return hits
+
+    def pipeline(
+        self,
+        ids: Sequence[int],
+        steps: int,
+        *,
+        every_step: bool,
+        before: Callable[[Sequence[int]], None],
+        after: Callable[[Sequence[int], list[bool]], None],
+        chunks: int,
+    ) -> None:
+        """:meth:`simulate` scenes ``ids`` in chunks, their Python work overlapping the stepping.
+
+        Each chunk is prepared by ``before`` (it writes the scenes' controls) in
+        this thread, then stepped by a helper thread (the GIL released while
+        MuJoCo steps) while this thread prepares the next chunk or hands the
+        stepped ones to ``after`` (with their contact verdicts), in order. Every
+        scene ends as :meth:`simulate` leaves it.
+
+        Args:
+            ids: The scenes to step.
+            steps: Physics steps.
+            every_step: As :meth:`simulate`.
+            before: Called with each chunk's scenes before they are stepped.
+            after: Called with each chunk's scenes and verdicts once stepped.
+            chunks: How many chunks (at most one per scene).
+        """
+        size = -(-len(ids) // max(1, min(chunks, len(ids)))) if ids else 1
+        parts = [list(ids[k : k + size]) for k in range(0, len(ids), size)]
+        if len(parts) <= 1:
+            for part in parts:
+                before(part)
+                after(part, self.simulate(part, steps, every_step=every_step))
+            return
+        if self._helper is None:
+            self._helper = ThreadPoolExecutor(1, thread_name_prefix="lynxsim-env-batch")
+        helper = self._helper
+        running: list[Future[list[bool]]] = []
+        try:
+            for part in parts:
+                before(part)
+                running.append(helper.submit(self.simulate, part, steps, every_step=every_step))
+            for part, stepped in zip(parts, running, strict=True):
+                after(part, stepped.result())
+        finally:
+            for stepped in running:
+                stepped.cancel()
+            for stepped in running:
+                if not stepped.cancelled():
+                    stepped.exception()  # wait: no chunk steps once this returns
+
+    def close(self) -> None:
+        """Stop the helper thread, if any (idempotent)."""
+        if self._helper is not None:
+            self._helper.shutdown()
+            self._helper = None
