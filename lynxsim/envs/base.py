@@ -42,6 +42,7 @@ from lynxsim.envs.control import (
 from lynxsim.envs.episodes import WORK_CLEARANCE_M, WorkColumn, draw_point, draw_scene, workable
 from lynxsim.envs.randomization import Domain, Randomization
 from lynxsim.envs.reward import GoalRewards, RewardType, goal_distance, goal_reward
+from lynxsim.envs.tool_action import ToolLimits, ToolRollController
 from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD, PolarRegion
 from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
 from lynxsim.inputs import real_array
@@ -104,7 +105,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self,
         *,
         render_mode: str | None = None,
-        control: Literal["tool", "joint"] | ControlMode = "tool",
+        control: Literal["tool", "tool_roll", "joint"] | ControlMode = "tool",
         target_fallback: Literal["nearest", "hold"] | TargetFallback = "nearest",
         reward_type: Literal["sparse", "dense"] | RewardType = "sparse",
         distance_threshold: float = 0.025,
@@ -116,6 +117,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         control_dt: float = 0.04,
         position_step: float = 0.015,
         pitch_step: float = 0.1,
+        roll_step: float = 0.1,
         joint_step: float = 0.05,
         width: int = 640,
         height: int = 480,
@@ -140,6 +142,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
             control_dt=control_dt,
             position_step=position_step,
             pitch_step=pitch_step,
+            roll_step=roll_step,
             joint_step=joint_step,
             width=width,
             height=height,
@@ -213,6 +216,17 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
     @staticmethod
     def _make_controller(config: EnvConfig) -> ToolSpaceController | JointSpaceController:
         """What turns the configured actions into servo targets."""
+        if config.control is ControlMode.TOOL_ROLL:
+            return ToolRollController(
+                ToolLimits(
+                    config.position_step,
+                    config.pitch_step,
+                    config.roll_step,
+                    _TARGET_BOX_LOWER,
+                    _TARGET_BOX_UPPER,
+                    max_joint_jump=_MAX_JOINT_JUMP_RAD,
+                )
+            )
         if config.control is ControlMode.TOOL:
             return ToolSpaceController(
                 config.position_step,
@@ -448,7 +462,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         d = goal_distance(obs["achieved_goal"], self._goal)
         distance = float(d)
         reward_goal = float(goal_reward(d, self.distance_threshold, self.reward_type))
-        return {
+        info: dict[str, Any] = {
             "is_success": distance <= self.distance_threshold,
             "collision": collision,
             "distance": distance,
@@ -459,6 +473,9 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
             "target_shortfall_m": self._controller.shortfall_m,
             "target_shortfall_rad": self._controller.shortfall_rad,
         }
+        if isinstance(self._controller, ToolRollController):
+            info["target_correction"] = np.array(self._controller.correction)
+        return info
 
     def _simulate(self) -> bool:
         """Run the control period's physics steps; True on arm–obstacle contact."""

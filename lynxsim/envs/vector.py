@@ -275,21 +275,29 @@ class LynxVectorEnv(
     def _infos(self, infos: list[dict[str, Any] | None]) -> dict[str, Any]:
         """The infos of every env as ``SyncVectorEnv``'s ``_add_info`` batches them.
 
-        When every env has an info with the first one's keys, scalars of one
-        type per key (the step's infos), each key is batched in one go; otherwise
-        env by env through ``_add_info``.
+        When every env has an info with the first one's keys, each a scalar of
+        one type or arrays of one shape and dtype (the step's infos), each key is
+        batched in one go; otherwise env by env through ``_add_info``.
         """
         first = infos[0]
         if first is not None and all(i is not None and i.keys() == first.keys() for i in infos):
-            kinds = {k: type(v) for k, v in first.items()}
-            if all(kind in _SCALARS for kind in kinds.values()) and all(
-                type(v) is kinds[k] for i in infos if i is not None for k, v in i.items()
-            ):
-                every = np.ones(self.num_envs, dtype=bool)
-                out: dict[str, Any] = {}
-                for k, kind in kinds.items():
-                    out[k] = np.array([i[k] for i in infos if i is not None], dtype=kind)
-                    out[f"_{k}"] = every.copy()
+            rows = [i for i in infos if i is not None]
+            out: dict[str, Any] = {}
+            every = np.ones(self.num_envs, dtype=bool)
+            for k, v in first.items():
+                values = [i[k] for i in rows]
+                kind = type(v)
+                if kind in _SCALARS and all(type(x) is kind for x in values):
+                    out[k] = np.array(values, dtype=kind)
+                elif kind is np.ndarray and all(
+                    type(x) is np.ndarray and x.dtype == v.dtype and x.shape == v.shape
+                    for x in values
+                ):
+                    out[k] = np.stack(values)
+                else:
+                    break
+                out[f"_{k}"] = every.copy()
+            else:
                 return out
         out = {}
         for n, info in enumerate(infos):

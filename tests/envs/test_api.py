@@ -351,7 +351,7 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
-        ({"control": "cartesian"}, r"control must be one of 'tool', 'joint', got 'cartesian'"),
+        ({"control": "cartesian"}, r"control must be one of 'tool', 'joint', 'tool_roll', got"),
         ({"reward_type": "shaped"}, r"reward_type must be one of 'sparse', 'dense'"),
         ({"collision_check": "never"}, "collision_check must be one of"),
         ({"render_mode": "ansi"}, "render_mode must be None or one of"),

@@ -104,8 +104,18 @@ def run_both(
             },
         ),
         ("LynxReach-v1", {"random_obstacles": 2, "collision_penalty": 1.0}),
+        ("LynxPickAndPlace-v2", {}),
+        ("LynxReach-v2", {"random_obstacles": (0, 2)}),
     ],
-    ids=["pick", "reach", "pick-v0-joint", "pick-random-scenes", "reach-random-obstacles"],
+    ids=[
+        "pick",
+        "reach",
+        "pick-v0-joint",
+        "pick-random-scenes",
+        "reach-random-obstacles",
+        "pick-v2",
+        "reach-v2",
+    ],
 )
 def test_batched_env_equals_sync_vector_env_bit_for_bit(env_id, kwargs):
     batched, sync = pair(env_id, **kwargs)
