@@ -122,7 +122,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         width: int = 640,
         height: int = 480,
         camera: str = "front",
-        render_quality: Literal["fast", "medium", "default"] = "fast",
+        render_quality: Literal["lean", "fast", "medium", "default"] = "fast",
         pixels: str | Sequence[str] = (),
         pixel_width: int = 84,
         pixel_height: int = 84,

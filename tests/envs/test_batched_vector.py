@@ -242,3 +242,27 @@ def test_fuzzed_actions_step_or_raise_a_typed_error(reach_batch, actions):
         return
     assert actions.shape == (2, 4)
     assert np.isfinite(obs["observation"]).all()
+
+
+@pytest.mark.parametrize(
+    ("quality", "side"),
+    [("lean", (84, 84)), ("fast", (128, 96))],
+    ids=["lean-84", "fast-128x96"],
+)
+def test_image_observations_of_the_batch_equal_each_envs_own(quality, side):
+    batched, sync = pair(
+        "LynxPickAndPlace-v1",
+        3,
+        pixels=("front", "top"),
+        pixel_width=side[0],
+        pixel_height=side[1],
+        render_quality=quality,
+        random_obstacles=(1, 2),
+    )
+    steps = run_both(batched, sync, 5)
+    pixels = steps[-1][0]["pixels"]
+    assert pixels.shape == (NUM_ENVS, side[1], side[0], 6)
+    assert pixels.std() > 20.0  # a scene, not a blank frame
+    assert not np.array_equal(pixels[0], pixels[1])
+    batched.close()
+    sync.close()
