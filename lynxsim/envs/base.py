@@ -421,16 +421,31 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
             InvalidInputError: As :meth:`step`.
             NonFiniteInputError: As :meth:`step`.
         """
+        values = self._action_values(action)
+        before = self._controller.target
+        return self._commanded(values, self._controller.apply(values), before)
+
+    def _action_values(self, action: npt.ArrayLike) -> list[float]:
+        """The action checked (as :meth:`step` says), its values clipped to [-1, 1]."""
         a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
         values = a.tolist()
         if not all(map(math.isfinite, values)):
             raise NonFiniteInputError(f"action must be finite, got {values}")
-        values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+        return [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+
+    def _commanded(
+        self, values: list[float], status: TargetStatus, before: tuple[float, ...]
+    ) -> tuple[TargetStatus, bool]:
+        """Write the controller's command (moved by ``values``) into ``data.ctrl``.
+
+        Args:
+            values: The action (:meth:`_action_values`).
+            status: What the controller made of it.
+            before: The controller's target before it.
+        """
         ctrl = self.data.ctrl
-        before = self._controller.target
-        status = self._controller.apply(values)
         ctrl[self._arm_act] = self._controller.q_cmd
         if self._GRIPPER_ACTION:
             ctrl[self._grip_act] = (values[-1] + 1.0) * (0.5 * GRIPPER_OPEN_M)

@@ -39,6 +39,7 @@ from lynxsim.envs.control import TargetStatus
 from lynxsim.envs.pick_and_place import PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.reward import GoalRewards
+from lynxsim.envs.tool_action import ToolRollController
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import count, real_array
 from lynxsim.sim.arm.env_batch import EnvBatch
@@ -114,6 +115,11 @@ class LynxVectorEnv(
         self.observation_space = batch_space(first.observation_space, self.num_envs)
         self._physics = EnvBatch([env._scene for env in self.envs], nthread)
         self._chunks = chunks
+        controllers = [env.controller for env in self.envs]
+        roll = [c for c in controllers if isinstance(c, ToolRollController)]
+        self._roll: list[ToolRollController] = roll if len(roll) == len(controllers) else []
+        """The envs' ``-v2`` controllers, moved by one
+        :func:`~lynxsim.envs.tool_action.tool_targets` call per chunk (empty for the others)."""
         spaces: gym.Space[Any] = first.observation_space
         self._keys: tuple[str, ...] = (
             tuple(spaces.spaces) if isinstance(spaces, gym.spaces.Dict) else ()
@@ -241,8 +247,16 @@ class LynxVectorEnv(
         limit = self.max_episode_steps
 
         def before(part: Sequence[int]) -> None:
-            for i in part:
-                commands[i] = envs[i]._command(a[i])
+            if not self._roll:
+                for i in part:
+                    commands[i] = envs[i]._command(a[i])
+                return
+            values = [envs[i]._action_values(a[i]) for i in part]
+            controllers = [self._roll[i] for i in part]
+            targets = [c.target for c in controllers]
+            statuses = ToolRollController.apply_many(controllers, values)
+            for i, v, status, target in zip(part, values, statuses, targets, strict=True):
+                commands[i] = envs[i]._commanded(v, status, target)
 
         def after(part: Sequence[int], hits: list[bool]) -> None:
             for i, hit in zip(part, hits, strict=True):
