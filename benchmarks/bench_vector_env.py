@@ -17,6 +17,9 @@ async workers'). The load average is printed beside each figure: the machine may
 be shared. Targets (issue 26): the batch of 32 >= 1.8x one plain env and >= 3x
 AsyncVectorEnv(2).
 
+Then ``LynxPickAndPlace-v2`` (the wrist-roll action, whose tool targets the batch
+moves in one vectorised call per chunk): one plain env beside the batch of 32.
+
 Then image observations (issue 26 item 5): steps/s of the plain env with one
 84x84 camera (``pixels=("front",)``) beside the state-only env, both with the
 lean preset ``render_quality="lean"`` and with ``"fast"``, and the batched env of
@@ -39,6 +42,7 @@ import gymnasium as gym
 import lynxsim.envs  # noqa: F401  (registers the envs)
 
 ENV_ID = "LynxPickAndPlace-v1"
+V2_ID = "LynxPickAndPlace-v2"
 BATCH_SIZES = (1, 2, 8, 32, 128)
 TARGET_VS_PLAIN = 1.8
 TARGET_VS_ASYNC = 3.0
@@ -73,9 +77,11 @@ class Timing:
         self.cpu_us = min(self.cpu_us, cpu_s / env_steps * 1e6)
 
 
-def plain_run(steps: int, **kwargs: Any) -> Callable[[], tuple[int, float, float]]:
+def plain_run(
+    steps: int, env_id: str = ENV_ID, **kwargs: Any
+) -> Callable[[], tuple[int, float, float]]:
     """A timed run of one ``gym.make`` env: (env steps, wall [s], CPU [s])."""
-    env = gym.make(ENV_ID, **kwargs)
+    env = gym.make(env_id, **kwargs)
     env.action_space.seed(0)
     actions = [env.action_space.sample() for _ in range(steps)]
     env.reset(seed=0)
@@ -158,6 +164,13 @@ def main() -> None:
         f"{batch / async_rate:.2f}x AsyncVectorEnv(2) (target >= {TARGET_VS_ASYNC}); "
         f"load average at end: {os.getloadavg()}"
     )
+    print(f"\n{V2_ID}: its tool targets of a chunk moved in one vectorised call")
+    runs = {
+        "plain v2 env": plain_run(n // 3, V2_ID),
+        "batched v2, N = 32": vector_run(32, n // 3, "vector_entry_point", V2_ID),
+    }
+    timings = measure(runs, args.repeats)
+    report(timings, "plain v2 env")
     if args.skip_pixels:
         return
     steps = max(n // 5, 100)

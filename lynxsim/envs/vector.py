@@ -68,6 +68,9 @@ class LynxVectorEnv(
             as ``gym.make``'s ``TimeLimit``.
         nthread: Threads stepping the physics, this one included (None: one per
             CPU).
+        chunks: Pieces a step is cut into, 1..num_envs: a helper thread steps each
+            natively while this thread prepares the next and finishes the stepped
+            ones (1: no overlap).
         **kwargs: The env's keyword arguments (every env gets the same);
             ``render_mode`` None or ``"rgb_array"``.
 
@@ -87,7 +90,7 @@ class LynxVectorEnv(
         num_envs: int,
         max_episode_steps: int | None = None,
         nthread: int | None = None,
-        chunks: int = 4,
+        chunks: int = 2,
         **kwargs: Any,
     ) -> None:
         self.num_envs = count(num_envs, "num_envs", 1, MAX_ENVS)
@@ -114,7 +117,7 @@ class LynxVectorEnv(
         self.single_observation_space = first.observation_space
         self.observation_space = batch_space(first.observation_space, self.num_envs)
         self._physics = EnvBatch([env._scene for env in self.envs], nthread)
-        self._chunks = chunks
+        self._chunks = count(chunks, "chunks", 1, MAX_ENVS)
         controllers = [env.controller for env in self.envs]
         roll = [c for c in controllers if isinstance(c, ToolRollController)]
         self._roll: list[ToolRollController] = roll if len(roll) == len(controllers) else []

@@ -43,18 +43,22 @@ def assert_same(a: Any, b: Any, where: str = "") -> None:
 
 
 def pair(
-    env_id: str, episode_steps: int = EPISODE_STEPS, **kwargs: Any
+    env_id: str,
+    episode_steps: int = EPISODE_STEPS,
+    batch: dict[str, int] | None = None,
+    **kwargs: Any,
 ) -> tuple[gym.vector.VectorEnv, gym.vector.VectorEnv]:
-    """The batched vector env and SyncVectorEnv of one id and options."""
+    """The batched vector env (and its ``batch`` options) and SyncVectorEnv of one id, options."""
     made = [
         gym.make_vec(
             env_id,
             num_envs=NUM_ENVS,
             vectorization_mode=mode,
             max_episode_steps=episode_steps,
+            **extra,
             **kwargs,
         )
-        for mode in ("vector_entry_point", "sync")
+        for mode, extra in (("vector_entry_point", batch or {}), ("sync", {}))
     ]
     return made[0], made[1]
 
@@ -117,8 +121,11 @@ def run_both(
         "reach-v2",
     ],
 )
-def test_batched_env_equals_sync_vector_env_bit_for_bit(env_id, kwargs):
-    batched, sync = pair(env_id, **kwargs)
+@pytest.mark.parametrize(
+    "batch", [{}, {"nthread": 1, "chunks": 1}, {"chunks": 3}], ids=["default", "serial", "chunks-3"]
+)
+def test_batched_env_equals_sync_vector_env_bit_for_bit(env_id, kwargs, batch):
+    batched, sync = pair(env_id, batch=batch, **kwargs)
     assert isinstance(batched.unwrapped, LynxVectorEnv)
     assert batched.metadata["autoreset_mode"] is AutoresetMode.NEXT_STEP
     assert batched.observation_space == sync.observation_space
@@ -198,8 +205,9 @@ def test_compute_reward_of_the_batch_is_the_steps_reward():
             ),
             "nthread",
         ),
+        (lambda: LynxVectorEnv(ReachEnv, num_envs=2, chunks=0), "chunks"),
     ],
-    ids=["no-envs", "human", "no-threads"],
+    ids=["no-envs", "human", "no-threads", "no-chunks"],
 )  # fmt: skip
 def test_bad_construction_is_refused(make, message):
     with pytest.raises(InvalidInputError, match=message):
