@@ -132,8 +132,19 @@ def test_batched_env_equals_sync_vector_env_bit_for_bit(env_id, kwargs, batch):
     assert batched.action_space == sync.action_space
     steps = run_both(batched, sync, 2 * EPISODE_STEPS + 3)
     assert [bool(truncated.all()) for *_, truncated, _ in steps].count(True) == 2
+    assert_same_data(batched, sync)
     batched.close()
     sync.close()
+
+
+def assert_same_data(batched: gym.vector.VectorEnv, sync: gym.vector.VectorEnv) -> None:
+    """Each env's MjData as mj_step left it: the state, positions and contacts."""
+    for mine, theirs in zip(batched.unwrapped.envs, sync.envs, strict=True):
+        a, b = mine.data, theirs.unwrapped.data
+        for name in ("time", "qpos", "qvel", "ctrl", "qacc_warmstart", "xpos", "geom_xpos", "ncon"):
+            assert_same(getattr(a, name), getattr(b, name), name)
+        assert_same(a.contact.geom[: a.ncon], b.contact.geom[: b.ncon], "contact.geom")
+        assert_same(a.contact.dist[: a.ncon], b.contact.dist[: b.ncon], "contact.dist")
 
 
 def test_collisions_terminate_and_autoreset_bit_for_bit():
@@ -157,6 +168,7 @@ def test_collisions_terminate_and_autoreset_bit_for_bit():
     assert reward[0] == 0.0
     assert not terminated[0]
     assert not info["collision"][0]
+    assert_same_data(batched, sync)
     batched.close()
     sync.close()
 
