@@ -9,6 +9,7 @@ import numpy as np
 
 from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, WorkColumn
 from lynxsim.envs.config import real_option
+from lynxsim.envs.episodes import farthest_apart, task_points
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, PolarRegion
 from lynxsim.sim.arm.model import CUBE_BODY
 
@@ -296,6 +297,18 @@ class PickAndPlaceEnv(LynxArmEnv):
         self._table_region = PolarRegion(r, a, (self._rest_z, self._rest_z))
         lo, hi = self.AIR_HEIGHT_M
         self._air_region = PolarRegion(r, a, (self._rest_z + lo, self._rest_z + hi))
+
+    def _check_feasible(self) -> None:
+        self._set_cube_half_size(CUBE_HALF_SIZE_M)  # (runs within the base's __init__)
+        cubes = task_points(self._table_region, self._obstacles)
+        if not cubes.size:
+            self._refuse(f"the obstacles block every cube start of {self._table_region}")
+        goal_regions = [self._table_region] * (self.goal_in_air_prob < 1.0)
+        goal_regions += [self._air_region] * (self.goal_in_air_prob > 0.0)
+        for region in goal_regions:
+            goals = task_points(region, self._obstacles)
+            if farthest_apart(cubes, goals) <= self.distance_threshold:
+                self._refuse(f"no goal of {region} lies outside distance_threshold of a cube")
 
     def _sample_task(self) -> None:
         size = self.domain.cube_size_m

@@ -8,6 +8,7 @@ from typing import ClassVar
 import numpy as np
 
 from lynxsim.envs.base import READY_TOOL_POSE, LynxArmEnv, Obs
+from lynxsim.envs.episodes import farthest_apart, task_points
 from lynxsim.envs.pick_and_place import _fields
 from lynxsim.envs.workspace import PolarRegion
 
@@ -94,6 +95,13 @@ class ReachEnv(LynxArmEnv):
         radius=(0.10, 0.25), azimuth=(-math.radians(80), math.radians(80)), height=(0.0, 0.10)
     )
     """Where goals are drawn."""
+
+    def _check_feasible(self) -> None:
+        goals = task_points(self.GOAL_REGION, self._obstacles)
+        if not goals.size:
+            self._refuse(f"the obstacles block every goal of {self.GOAL_REGION}")
+        if farthest_apart(goals, np.array([READY_TOOL_POSE[:3]])) <= self.distance_threshold:
+            self._refuse("no goal lies farther than distance_threshold from the start")
 
     def _sample_task(self) -> None:
         self._set_goal(self._draw_point(self.GOAL_REGION, READY_TOOL_POSE[:3]))
