@@ -1,4 +1,4 @@
-"""``LynxPickAndPlace-v1``: pick the cube up and put it at a goal, around the obstacles."""
+"""``LynxPickAndPlace-v1``/``-v2``: pick the cube up and put it at a goal, around the obstacles."""
 
 from __future__ import annotations
 
@@ -66,6 +66,15 @@ class PickAndPlaceEnv(LynxArmEnv):
     With ``control="joint"`` the action is ``Box(-1, 1, (6,), float32)``: deltas of
     q1..q5 (+1 = + ``joint_step`` [rad], 0.05; clipped to the joint ranges), then
     the gripper as above.
+
+    ``-v2`` (``control="tool_roll"``): ``Box(-1, 1, (6,), float32)``, the tool action
+    above with the wrist roll inserted at index 4 (+1 = + ``roll_step`` [rad], 0.1;
+    clipped to the roll joint's range 0..2 pi; pointing down, the fingers close
+    along the azimuth ``q1 - (roll - pi)``), the gripper at index 5. A request the
+    controller cannot take goes to the **nearest** feasible target (in action
+    units; it slides along the reach boundary and the joint and pitch limits,
+    :mod:`lynxsim.envs.tool_action`), and ``info["target_correction"]`` (shape (5,),
+    commanded minus requested x, y, z [m], pitch, roll [rad]) says what changed.
 
     **Observation** (a dict, every array float64 and freshly allocated):
     ``achieved_goal`` is the cube's position, ``desired_goal`` the goal, both
@@ -191,7 +200,8 @@ class PickAndPlaceEnv(LynxArmEnv):
     physics step, or of every physics step with ``collision_check="physics_step"``),
     ``distance`` [m], ``reward_goal``, ``reward_collision``, ``target_status`` (a
     :class:`~lynxsim.envs.control.TargetStatus`), ``target_held``,
-    ``target_shortfall_m`` [m] and ``target_shortfall_rad`` [rad].
+    ``target_shortfall_m`` [m] and ``target_shortfall_rad`` [rad]; ``-v2`` adds
+    ``target_correction``.
 
     **Arguments** (all keyword): ``goal_in_air_prob`` (0.5) and those of
     :class:`~lynxsim.envs.base.LynxArmEnv`: ``render_mode`` (None, ``"rgb_array"``,
@@ -243,7 +253,12 @@ class PickAndPlaceEnv(LynxArmEnv):
       ``render()``, or the first ``reset`` with ``pixels``); the other order can
       clash over the EGL/GPU driver libraries.
 
-    **Version history**: v1: an infeasible tool request moves the target as far as
+    **Version history**: v2: the wrist roll in the tool action (6-D), and an
+    infeasible request goes to the nearest feasible target, sliding along the
+    reach boundary and the pitch limits (was: the farthest feasible point along
+    the request, which stops dead at the edge of the reach), with
+    ``info["target_correction"]``; the observation is v1's (``control="tool_roll"``;
+    v1 still registered). v1: an infeasible tool request moves the target as far as
     is feasible (was: held); ``random_obstacles``, ``pixels`` and ``randomize``
     (off by default). v0: first release (still registered, with
     ``target_fallback="hold"``).
