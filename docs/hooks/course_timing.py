@@ -1,20 +1,33 @@
-"""MkDocs hook: how long each course chapter took to execute, and all of them together.
+"""MkDocs hook: the course's kernels find ``checks``; each chapter's execution time is logged.
 
-mkdocs-jupyter executes a notebook while its page renders, between the
-``on_page_markdown`` and ``on_page_content`` events; this hook logs the time
-between them for every chapter and the total when the build ends.
+mkdocs-jupyter executes a chapter while its page renders, between the
+``on_page_markdown`` and ``on_page_content`` events, in a kernel started in the
+directory mkdocs runs in; this hook puts ``docs/course`` on the kernels'
+``PYTHONPATH`` (so that ``import checks`` works as it does beside the chapter) and
+logs the time each chapter took and the total when the build ends.
 """
 
 from __future__ import annotations
 
 import logging
+import os
 import time
+from pathlib import Path
 from typing import Any
 
 log = logging.getLogger("mkdocs.hooks.course_timing")
 
 _started: dict[str, float] = {}
 _taken: dict[str, float] = {}
+
+
+def on_config(config: Any, **kwargs: Any) -> Any:
+    """Put the course folder on the PYTHONPATH that the chapters' kernels inherit."""
+    course = str(Path(config["docs_dir"]) / "course")
+    paths = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+    if course not in paths:
+        os.environ["PYTHONPATH"] = os.pathsep.join([course, *paths])
+    return config
 
 
 def _is_chapter(page: Any) -> bool:
