@@ -12,6 +12,10 @@
 # finds a way where the potential field the report suggested gets stuck.
 
 # %%
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # off-screen rendering; before mujoco is imported
+
 import matplotlib.pyplot as plt
 import mujoco
 import numpy as np
