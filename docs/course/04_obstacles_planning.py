@@ -12,6 +12,7 @@
 # finds a way where the potential field the report suggested gets stuck.
 
 # %%
+import html
 import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")  # off-screen rendering; before mujoco is imported
@@ -25,6 +26,7 @@ from checks import (
     check_potential_field_failure,
     check_via_point_verdicts,
 )
+from IPython.display import HTML
 
 from lynxsim import robots
 from lynxsim.arm import tool_pose
@@ -37,7 +39,9 @@ from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.arm.task import run_arm_trajectory
 from lynxsim.sim.planning import CheckerOracle
 from lynxsim.sim.render import RenderSettings, SceneRenderer
+from lynxsim.sim.replay import export_replay
 from lynxsim.tasks import load_task
+from lynxsim.web.page import replay_page
 
 plain = load_task(REPO / "tasks/pick_and_place.toml")
 via = load_task(REPO / "tasks/obstacle_avoidance.toml")
@@ -118,6 +122,20 @@ plt.imshow(frame)
 plt.axis("off")
 plt.title(f"pick_and_place, quintic, t = {log.time_s[step]:.2f} s: the hand meets the cylinder")
 plt.show()
+
+# %% [markdown]
+# The same run as a replay page (`lynxsim play --html` writes one per run): drag to turn
+# the view, scroll to zoom, scrub the time slider; contacts are marked on the timeline
+# and painted red while they last, beside the clearance curve and the run's verdicts.
+
+# %%
+page = replay_page(
+    export_replay(model, log, runs["quintic"].report, title="pick_and_place: quintic")
+)
+HTML(
+    f'<div><iframe srcdoc="{html.escape(page)}" style="width: 100%; height: 900px; border: 0">'
+    "</iframe></div>"
+)
 
 # %% [markdown]
 # ## Exercise 4.1 — distance to the cylinder

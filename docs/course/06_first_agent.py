@@ -14,6 +14,10 @@
 # goal's offset from the commanded tool point (in steps of 15 mm) and a constant.
 
 # %%
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # off-screen rendering; before mujoco is imported
+
 import gymnasium as gym
 import matplotlib.pyplot as plt
 import numpy as np
@@ -101,6 +105,23 @@ print("learned W:\n", W.round(2))
 held_out = [rollout(W, 20_000 + k, steps=100)[1] for k in range(20)]
 rate = float(np.mean(held_out))
 print(f"success on 20 held-out goals: {rate:.0%}")
+
+# %% [markdown]
+# What it looks like at the end of a held-out episode (an EGL frame of the env's own
+# renderer; the goal is the small green sphere):
+
+# %%
+viewer = gym.make("LynxReach-v1", render_mode="rgb_array")
+obs, info = viewer.reset(seed=20_000)
+for _ in range(100):
+    action = np.append(np.clip(W @ features(obs), -1.0, 1.0), 0.0).astype(np.float32)
+    obs, _reward, _terminated, _truncated, info = viewer.step(action)
+plt.figure(figsize=(6.4, 4.8))
+plt.imshow(viewer.render())
+plt.axis("off")
+plt.title(f"distance to the goal: {info['distance'] * 1e3:.1f} mm")
+plt.show()
+viewer.close()
 
 # %% [markdown]
 # **Exercise 6.2** Train and evaluate your agent (the cells above); the check wants at
