@@ -19,7 +19,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from checks import check_dh_transform, check_fk_figure7, check_pitch_figure4
 
-from lynxsim.arm import FRAME_NAMES, LYNX_ARM, fk, frame_origins, tool_pose
+from lynxsim.arm import FRAME_NAMES, LYNX_ARM, fk, frame_transforms, tool_pose
 
 # %% [markdown]
 # ## The DH table
@@ -112,24 +112,27 @@ print("10,000 poses at once:", fk(q_many).shape)
 # %% [markdown]
 # ## The frames, drawn
 #
-# `frame_origins` gives every frame's origin; the links run between them.
+# `frame_transforms` gives every frame's pose (`frame_origins` just their origins); the
+# links run between the origins. Each frame's x axis is drawn red and its z axis (the
+# joint's axis) blue, 40 mm long: see how each z axis is the axis its joint turns about,
+# and how frame 2's x axis lies along the upper arm (a_2 = 153 mm is measured along it).
 
 # %%
-fig = plt.figure(figsize=(9, 4.5))
-for k, (q_deg, title) in enumerate(
-    [
-        ([-25.27, 100.5, -41.19, -13.62, 154.6], "report's Figure 4"),
-        ([-6.61, 38.19, -144.24, 58.24, 63.00], "report's Figure 7"),
-    ]
-):
+fig = plt.figure(figsize=(10, 5))
+cases = [
+    ([-25.27, 100.5, -41.19, -13.62, 154.6], "report's Figure 4"),
+    ([-6.61, 38.19, -144.24, 58.24, 63.00], "report's Figure 7"),
+]
+for k, (q_deg, title) in enumerate(cases):
     q = np.radians(q_deg)
-    p = frame_origins(q) * 1e3
-    T = fk(q)
+    T = frame_transforms(q)
+    p = T[:, :3, 3] * 1e3
     ax = fig.add_subplot(1, 2, k + 1, projection="3d")
-    ax.plot(p[:, 0], p[:, 1], p[:, 2], "o-", color="tab:blue", lw=3)
-    for axis, colour in zip(range(3), ("tab:red", "tab:green", "tab:blue"), strict=True):
-        d = T[:3, axis] * 60
-        ax.quiver(*p[-1], *d, color=colour)
+    ax.plot(p[:, 0], p[:, 1], p[:, 2], "o-", color="grey", lw=3)
+    for Ti in T:
+        origin = Ti[:3, 3] * 1e3
+        ax.quiver(*origin, *(Ti[:3, 0] * 40), color="tab:red")
+        ax.quiver(*origin, *(Ti[:3, 2] * 40), color="tab:blue")
     for name, point in zip(FRAME_NAMES, p, strict=True):
         if name in ("frame2", "frame3", "frame4", "tool"):
             ax.text(*point, " " + name, fontsize=7)
