@@ -118,7 +118,7 @@ print("10,000 poses at once:", fk(q_many).shape)
 # and how frame 2's x axis lies along the upper arm (a_2 = 153 mm is measured along it).
 
 # %%
-fig = plt.figure(figsize=(10, 5))
+fig = plt.figure(figsize=(12, 6.5))
 cases = [
     ([-25.27, 100.5, -41.19, -13.62, 154.6], "report's Figure 4"),
     ([-6.61, 38.19, -144.24, 58.24, 63.00], "report's Figure 7"),
@@ -137,7 +137,8 @@ for k, (q_deg, title) in enumerate(cases):
         if name in ("frame2", "frame3", "frame4", "tool"):
             ax.text(*point, " " + name, fontsize=7)
     ax.set(xlabel="x [mm]", ylabel="y [mm]", zlabel="z [mm]", title=title)
-    ax.set_xlim(-200, 300), ax.set_ylim(-250, 250), ax.set_zlim(-100, 450)
+    ax.set_xlim(-100, 250), ax.set_ylim(-175, 175), ax.set_zlim(-100, 450)
+    ax.set_box_aspect((350, 350, 550))
 plt.tight_layout()
 plt.show()
 

@@ -71,8 +71,9 @@ plt.show()
 #   (the signed, normalised determinant of the platform Jacobian) measures it and
 #   changes sign across one.
 #
-# The map over the platform centre, alpha = 0, in the report's working mode (7):
-# white outside the workspace, colour the parallel measure, black its zero line.
+# The maps over the platform centre, alpha = 0 and 30°, in the report's working mode (7):
+# white outside the workspace, colour the parallel measure, black its zero line (the
+# parallel singularities the mode meets), triangles the base joints.
 
 # %%
 xs = np.linspace(0.005, 0.600, 240)
