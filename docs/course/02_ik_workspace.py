@@ -19,7 +19,16 @@ import matplotlib.pyplot as plt
 import numpy as np
 from checks import check_elbow_p1, check_ik_p2, check_two_link_ik, check_wrist_reach
 
-from lynxsim.arm import LYNX_ARM, frame_origins, ik, ik_one, sample_workspace, tool_pose
+from lynxsim.arm import (
+    LYNX_ARM,
+    frame_origins,
+    ik,
+    ik_one,
+    jacobian,
+    manipulability,
+    sample_workspace,
+    tool_pose,
+)
 from lynxsim.errors import OutOfReachError
 
 # %% [markdown]
@@ -104,6 +113,31 @@ fig.colorbar(sc, ax=axes[1], label="pitch [deg]")
 plt.tight_layout()
 plt.show()
 print(f"farthest tool point from the base axis: {r.max():.0f} mm")
+
+# %% [markdown]
+# ## Where the two branches meet: the stretched elbow
+#
+# The elbow-up and elbow-down solutions merge when q3 = 0 (the arm stretched) — the
+# boundary of the workspace. There the arm loses a direction of motion: the Jacobian of
+# the tool point and pitch (`jacobian`, 4×5) drops rank, and Yoshikawa's manipulability
+# √det(J Jᵀ) goes to zero.
+
+# %%
+q3 = np.radians(np.linspace(-145, 0, 300))
+q = np.zeros((300, 5))
+q[:, 1], q[:, 2], q[:, 3] = np.radians(60), q3, -np.radians(60) - q3
+w = manipulability(q, kind="position_pitch")
+plt.figure(figsize=(6, 3))
+plt.plot(np.degrees(q3), w)
+plt.xlabel("q3 [deg]")
+plt.ylabel("manipulability [m³]")
+plt.title("q2 = 60°, pitch 0: the stretched elbow (q3 = 0) is singular")
+plt.show()
+print(
+    "rank of J at q3 = -60 deg:",
+    np.linalg.matrix_rank(jacobian(q[np.argmin(abs(q3 + np.radians(60)))])),
+)
+print("rank of J at q3 = 0:", np.linalg.matrix_rank(jacobian(q[-1]), tol=1e-9))
 
 # %% [markdown]
 # ## Exercises
