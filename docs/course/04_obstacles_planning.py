@@ -88,6 +88,27 @@ plt.show()
 # to (80, 0, 300) swings the hand around the base and through the cylinder — which
 # the report did not notice.
 #
+# Seen from above, the tool paths through the via points (dots): the straight line turns
+# at each via point and runs between the base and the cylinder (x = 80 mm, 30 mm from
+# its surface); the quintic, interpolating the joints, bulges outwards between (80, 250)
+# and (80, 0) — straight through the cylinder.
+
+# %%
+fig, ax = plt.subplots(figsize=(5, 5))
+for kind in ("line", "quintic"):
+    traj = generate(kind, via.poses, None if kind == "line" else 1.0)
+    p = tool_pose(traj.sample(traj.times_at_rate(200.0)).q).position * 1e3
+    ax.plot(p[:, 0], p[:, 1], label=kind)
+vp = np.array([pose.position for pose in via.poses]) * 1e3
+ax.plot(vp[:, 0], vp[:, 1], "ko", label="via points")
+ax.add_patch(plt.Circle((150, 150), 40, color="tab:red", alpha=0.4, label="cylinder"))
+ax.set(
+    xlabel="x [mm]", ylabel="y [mm]", aspect="equal", title="obstacle_avoidance, seen from above"
+)
+ax.legend(fontsize=8)
+plt.show()
+
+# %% [markdown]
 # ## In the physics
 #
 # The checker reasons about commanded joints; the simulation plays them through the
