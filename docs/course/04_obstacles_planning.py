@@ -80,6 +80,9 @@ for ax, task in zip(axes, (plain, via), strict=True):
 axes[0].set_ylabel("clearance to the cylinder [mm]")
 plt.tight_layout()
 plt.show()
+kinds = ("free", "cubic", "quintic", "lspb", "line")
+assert all(verdicts[("pick_and_place", k)] for k in kinds)  # what the text below says
+assert [k for k in kinds if not verdicts[("obstacle_avoidance", k)]] == ["line"]
 
 # %% [markdown]
 # The plain task hits in every type. With the via points, only the straight line keeps
