@@ -66,12 +66,17 @@ plt.show()
 # next (at 10 kHz a continuous quantity barely changes between samples; a jump stays).
 
 # %%
+jumps = {}
 print(f"{'type':8} {'duration [s]':>12} {'max velocity step':>18} {'max acceleration step':>22}")
 for kind, traj in trajs.items():
     s = traj.sample(traj.times_at_rate(10_000.0))
     dv = np.abs(np.diff(s.qd, axis=0)).max()
     da = np.abs(np.diff(s.qdd, axis=0)).max()
     print(f"{kind:8} {traj.duration:12.2f} {dv:18.4f} {da:22.4f}")
+    jumps[kind] = (dv, da)
+assert jumps["free"][0] > 0.1  # what the text below says
+assert all(jumps[k][0] < 0.01 < 1.0 < jumps[k][1] for k in ("cubic", "lspb"))
+assert all(jumps[k][1] < 0.1 for k in ("quintic", "ruckig"))
 
 # %% [markdown]
 # `free` jumps in velocity at every waypoint (the servos feel it as a kick), `cubic`

@@ -98,7 +98,7 @@ plt.show()
 print("learned W:\n", W.round(2))
 
 # %% [markdown]
-# The learned W is close to a diagonal gain: move towards the goal along each axis.
+# The learned W is dominated by its diagonal: move towards the goal along each axis.
 # Evaluate it on goals it never trained on (seeds 20000 on), a full episode each:
 
 # %%
