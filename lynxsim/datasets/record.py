@@ -31,7 +31,7 @@ from lynxsim.datasets.minari_writer import MinariWriter, require_minari, write_n
 from lynxsim.datasets.npz import NpzWriter
 from lynxsim.envs.evaluation import make_policy
 from lynxsim.envs.noise import action_noise_std, check_noise, noise_generator
-from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
+from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID, make_env
 from lynxsim.errors import InvalidInputError, InvalidTypeError, short
 from lynxsim.fileio import atomic_folder, check_new_folder
 
@@ -165,7 +165,7 @@ def write_dataset(
     pixels: dict[str, Any] = {}
     if images:
         pixels = {"pixels": tuple(images), "pixel_width": image_size, "pixel_height": image_size}
-    env = gym.make(env_id, **pixels)
+    env = make_env(env_id, **pixels)
     spec = env.spec if env.spec is not None else gym.spec(env_id)
     try:
         # LeRobot's features, made before any write (it refuses what it cannot store)
