@@ -1,8 +1,11 @@
-"""Gymnasium environments of the arm: ``LynxPickAndPlace-v1`` and ``LynxReach-v1``.
+"""Gymnasium environments of the arm: ``LynxPickAndPlace-v1``/``-v2`` and ``LynxReach-v1``/``-v2``.
 
 ``-v0`` of each stays registered: it holds the previous tool target when a
 request is out of reach, where ``-v1`` takes the feasible target nearest the
-request (:class:`~lynxsim.envs.control.TargetFallback`).
+request along it (:class:`~lynxsim.envs.control.TargetFallback`). ``-v2`` adds
+the wrist roll to the tool action and takes an unreachable request to the
+nearest feasible target, sliding along the reach boundary
+(:mod:`lynxsim.envs.tool_action`).
 
 Importing this package registers the envs with Gymnasium (as Gymnasium-Robotics
 does)::
@@ -28,7 +31,10 @@ from lynxsim.envs.registration import (
     ENV_IDS,
     LATEST_ENV_IDS,
     PICK_AND_PLACE_ID,
+    PICK_AND_PLACE_V2_ID,
     REACH_ID,
+    REACH_V2_ID,
+    V2_ENV_IDS,
     register_envs,
 )
 
@@ -36,7 +42,10 @@ __all__ = [
     "ENV_IDS",
     "LATEST_ENV_IDS",
     "PICK_AND_PLACE_ID",
+    "PICK_AND_PLACE_V2_ID",
     "REACH_ID",
+    "REACH_V2_ID",
+    "V2_ENV_IDS",
     "Domain",
     "EpisodeStats",
     "EvaluationSummary",
@@ -45,6 +54,7 @@ __all__ = [
     "Randomization",
     "ReachEnv",
     "ReachExpert",
+    "ToolLimits",
     "evaluate",
     "record_expert_episode",
     "register_envs",
@@ -55,6 +65,7 @@ _LAZY = {
     "Randomization": "lynxsim.envs.randomization",
     "PickAndPlaceEnv": "lynxsim.envs.pick_and_place",
     "ReachEnv": "lynxsim.envs.reach",
+    "ToolLimits": "lynxsim.envs.tool_action",
     "PickAndPlaceExpert": "lynxsim.envs.expert",
     "ReachExpert": "lynxsim.envs.expert",
     "EpisodeStats": "lynxsim.envs.evaluation",

@@ -42,8 +42,14 @@ from lynxsim.envs.control import (
 from lynxsim.envs.episodes import WORK_CLEARANCE_M, WorkColumn, draw_point, draw_scene, workable
 from lynxsim.envs.randomization import Domain, Randomization
 from lynxsim.envs.reward import GoalRewards, RewardType, goal_distance, goal_reward
+from lynxsim.envs.tool_action import ToolLimits, ToolRollController
 from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD, PolarRegion
-from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
+from lynxsim.errors import (
+    InfeasibleSceneError,
+    InvalidInputError,
+    LynxsimError,
+    NonFiniteInputError,
+)
 from lynxsim.inputs import real_array
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene
 from lynxsim.sim.arm.env_scene import EnvScene
@@ -89,6 +95,9 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
 
     Raises:
         InvalidInputError: A bad argument (the message names it and the valid choices).
+        InfeasibleSceneError: Options that can never produce an episode (fixed
+            obstacles that block a task region, a success radius no goal lies
+            outside of).
     """
 
     metadata: dict[str, Any] = {  # noqa: RUF012  (Gymnasium's convention; copied per instance)
@@ -104,7 +113,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self,
         *,
         render_mode: str | None = None,
-        control: Literal["tool", "joint"] | ControlMode = "tool",
+        control: Literal["tool", "tool_roll", "joint"] | ControlMode = "tool",
         target_fallback: Literal["nearest", "hold"] | TargetFallback = "nearest",
         reward_type: Literal["sparse", "dense"] | RewardType = "sparse",
         distance_threshold: float = 0.025,
@@ -116,11 +125,12 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         control_dt: float = 0.04,
         position_step: float = 0.015,
         pitch_step: float = 0.1,
+        roll_step: float = 0.1,
         joint_step: float = 0.05,
         width: int = 640,
         height: int = 480,
         camera: str = "front",
-        render_quality: Literal["fast", "medium", "default"] = "fast",
+        render_quality: Literal["lean", "fast", "medium", "default"] = "fast",
         pixels: str | Sequence[str] = (),
         pixel_width: int = 84,
         pixel_height: int = 84,
@@ -140,6 +150,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
             control_dt=control_dt,
             position_step=position_step,
             pitch_step=pitch_step,
+            roll_step=roll_step,
             joint_step=joint_step,
             width=width,
             height=height,
@@ -209,10 +220,37 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self._checker = scene.checker(base)
         self._set_goal(np.zeros(3))
         self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._check_feasible()
+
+    def _check_feasible(self) -> None:
+        """Refuse options that can never produce an episode.
+
+        Raises:
+            InfeasibleSceneError: The fixed obstacles block a region the task draws
+                from, or no goal there lies outside ``distance_threshold``.
+        """
+        raise NotImplementedError
+
+    def _refuse(self, what: str) -> None:
+        raise InfeasibleSceneError(
+            f"{type(self).__name__} with obstacles={self._obstacles!r} and distance_threshold="
+            f"{self.distance_threshold} m can never draw an episode: {what}"
+        )
 
     @staticmethod
     def _make_controller(config: EnvConfig) -> ToolSpaceController | JointSpaceController:
         """What turns the configured actions into servo targets."""
+        if config.control is ControlMode.TOOL_ROLL:
+            return ToolRollController(
+                ToolLimits(
+                    config.position_step,
+                    config.pitch_step,
+                    config.roll_step,
+                    _TARGET_BOX_LOWER,
+                    _TARGET_BOX_UPPER,
+                    max_joint_jump=_MAX_JOINT_JUMP_RAD,
+                )
+            )
         if config.control is ControlMode.TOOL:
             return ToolSpaceController(
                 config.position_step,
@@ -359,8 +397,18 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         draw_scene(self.np_random, self.random_obstacles, ready, task, place, self._workable)
 
     def _workable(self, columns: list[WorkColumn]) -> bool:
-        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`."""
-        return workable(self._checker, self._q_ready, columns)
+        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`.
+
+        A column starts no lower than the tool target box's floor: a small cube's
+        centre lies below it, and the tool goes no lower than the floor (which
+        keeps the fingertips above the table) to grasp it or put it down.
+        """
+        floor = _TARGET_BOX_LOWER[2]
+        raised = [
+            c._replace(point=np.array([c.point[0], c.point[1], max(float(c.point[2]), floor)]))
+            for c in columns
+        ]
+        return workable(self._checker, self._q_ready, raised)
 
     def _draw_point(
         self, region: PolarRegion, away_from: npt.ArrayLike | None = None
@@ -394,25 +442,63 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
                 booleans, complex numbers, object arrays...) or has the wrong shape.
             NonFiniteInputError: The action holds NaN or infinity.
         """
+        command = self._command(action)
+        return self._outcome(command, self._simulate())
+
+    def _command(self, action: npt.ArrayLike) -> tuple[TargetStatus, bool]:
+        """Check an action and write its servo targets into ``data.ctrl`` (a step's first part).
+
+        Returns:
+            What became of the tool target, and whether it was held.
+
+        Raises:
+            InvalidInputError: As :meth:`step`.
+            NonFiniteInputError: As :meth:`step`.
+        """
+        values = self._action_values(action)
+        before = self._controller.target
+        return self._commanded(values, self._controller.apply(values), before)
+
+    def _action_values(self, action: npt.ArrayLike) -> list[float]:
+        """The action checked (as :meth:`step` says), its values clipped to [-1, 1]."""
         a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
         values = a.tolist()
         if not all(map(math.isfinite, values)):
             raise NonFiniteInputError(f"action must be finite, got {values}")
-        values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+        return [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+
+    def _commanded(
+        self, values: list[float], status: TargetStatus, before: tuple[float, ...]
+    ) -> tuple[TargetStatus, bool]:
+        """Write the controller's command (moved by ``values``) into ``data.ctrl``.
+
+        Args:
+            values: The action (:meth:`_action_values`).
+            status: What the controller made of it.
+            before: The controller's target before it.
+        """
         ctrl = self.data.ctrl
-        before = self._controller.target
-        status = self._controller.apply(values)
         ctrl[self._arm_act] = self._controller.q_cmd
         if self._GRIPPER_ACTION:
             ctrl[self._grip_act] = (values[-1] + 1.0) * (0.5 * GRIPPER_OPEN_M)
-        collision = self._simulate()
+        return status, self._controller.target == before
 
+    def _outcome(
+        self, command: tuple[TargetStatus, bool], collision: bool
+    ) -> tuple[Obs, float, bool, bool, dict[str, Any]]:
+        """A step's result once its physics ran (its last part; :meth:`step` returns it).
+
+        Args:
+            command: What :meth:`_command` returned.
+            collision: Whether the arm or the cube touched an obstacle.
+        """
+        status, held = command
         obs = self._observation()
         if self._pixels is not None:
             obs["pixels"] = self._pixels.render(self.data)
-        info = self._info(obs, collision, status, held=self._controller.target == before)
+        info = self._info(obs, collision, status, held=held)
         terminated = collision and self.terminate_on_collision
         if self.render_mode == "human":
             self.render()
@@ -425,7 +511,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         d = goal_distance(obs["achieved_goal"], self._goal)
         distance = float(d)
         reward_goal = float(goal_reward(d, self.distance_threshold, self.reward_type))
-        return {
+        info: dict[str, Any] = {
             "is_success": distance <= self.distance_threshold,
             "collision": collision,
             "distance": distance,
@@ -436,11 +522,18 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
             "target_shortfall_m": self._controller.shortfall_m,
             "target_shortfall_rad": self._controller.shortfall_rad,
         }
+        if isinstance(self._controller, ToolRollController):
+            info["target_correction"] = np.array(self._controller.correction)
+        return info
 
     def _simulate(self) -> bool:
         """Run the control period's physics steps; True on arm–obstacle contact."""
-        every = self.collision_check is CollisionCheck.PHYSICS_STEP
-        return self._scene.simulate(self.frame_skip, every_step=every)
+        return self._scene.simulate(self.frame_skip, every_step=self._physics_step_contacts)
+
+    @property
+    def _physics_step_contacts(self) -> bool:
+        """Whether the contacts are tested after every physics step (else after the last)."""
+        return self.collision_check is CollisionCheck.PHYSICS_STEP
 
     def _touching_obstacle(self) -> bool:
         """Whether the arm or the cube touches an obstacle in the current contacts."""

@@ -187,6 +187,7 @@ class EnvConfig:
             :meth:`frame_skip`).
         position_step: Tool-point move for a tool action of 1 [m], > 0.
         pitch_step: Pitch change for a tool action of 1 [rad], > 0.
+        roll_step: Wrist-roll change for a ``"tool_roll"`` action of 1 [rad], > 0.
         joint_step: Joint change for a joint action of 1 [rad], > 0.
         frames: Size, camera and quality of ``render()`` frames.
         pixels: One per camera of the image observation, in channel order (empty: none).
@@ -206,6 +207,7 @@ class EnvConfig:
     control_dt: float
     position_step: float
     pitch_step: float
+    roll_step: float
     joint_step: float
     frames: RenderSettings
     pixels: tuple[RenderSettings, ...]
@@ -216,7 +218,7 @@ class EnvConfig:
         cls,
         *,
         render_mode: str | None,
-        control: Literal["tool", "joint"] | ControlMode,
+        control: Literal["tool", "tool_roll", "joint"] | ControlMode,
         target_fallback: Literal["nearest", "hold"] | TargetFallback,
         reward_type: Literal["sparse", "dense"] | RewardType,
         distance_threshold: float,
@@ -228,11 +230,12 @@ class EnvConfig:
         control_dt: float,
         position_step: float,
         pitch_step: float,
+        roll_step: float,
         joint_step: float,
         width: int,
         height: int,
         camera: str,
-        render_quality: Literal["fast", "medium", "default"],
+        render_quality: Literal["lean", "fast", "medium", "default"],
         pixels: str | Sequence[str],
         pixel_width: int,
         pixel_height: int,
@@ -243,10 +246,15 @@ class EnvConfig:
         Args:
             render_mode: None, ``"rgb_array"`` (off-screen) or ``"human"`` (a passive
                 :mod:`mujoco.viewer` window; needs a display).
-            control: ``"tool"`` (tool-space deltas through the IK) or ``"joint"``.
-            target_fallback: What a tool request the IK cannot reach does: ``"nearest"``
-                (the feasible target nearest it; ``-v1``) or ``"hold"`` (the previous
-                target; ``-v0``); see :class:`~lynxsim.envs.control.TargetFallback`.
+            control: ``"tool"`` (tool-space deltas through the IK; ``-v0``, ``-v1``),
+                ``"tool_roll"`` (the same with the wrist roll, and an unreachable request
+                taken to the nearest feasible target: ``-v2``,
+                :mod:`lynxsim.envs.tool_action`) or ``"joint"``.
+            target_fallback: What a ``"tool"`` request the IK cannot reach does:
+                ``"nearest"`` (the feasible target nearest it along the request; ``-v1``)
+                or ``"hold"`` (the previous target; ``-v0``); see
+                :class:`~lynxsim.envs.control.TargetFallback`. ``"tool_roll"`` takes
+                ``"nearest"`` only.
             reward_type: ``"sparse"`` or ``"dense"``.
             distance_threshold: Success radius around the goal [m].
             obstacles: The obstacles (:mod:`lynxsim.scene`; default: the report's cylinder,
@@ -261,12 +269,15 @@ class EnvConfig:
             control_dt: Control period [s], a whole multiple of the 2 ms physics step.
             position_step: Tool-point move for a tool action of 1 [m].
             pitch_step: Pitch change for a tool action of 1 [rad].
+            roll_step: Wrist-roll change for a ``"tool_roll"`` action of 1 [rad].
             joint_step: Joint change for a joint action of 1 [rad].
             width: Frame width [px].
             height: Frame height [px].
             camera: Camera of the scene (``"front"`` or ``"top"``).
-            render_quality: ``"fast"`` (no shadows), ``"medium"`` (shadows) or ``"default"``
-                (shadows and multisampling); of ``render()`` frames and image observations.
+            render_quality: ``"lean"`` (for small image observations: no shadows, skybox,
+                fog or haze, coarse shapes), ``"fast"`` (no shadows), ``"medium"``
+                (shadows) or ``"default"`` (shadows and multisampling); of ``render()``
+                frames and image observations.
             pixels: Cameras of the image observation (``"front"``, ``"top"``), in
                 channel order; a name or a sequence of distinct names; ``()`` (default):
                 no ``"pixels"`` entry.
@@ -302,6 +313,7 @@ class EnvConfig:
             "control_dt": control_dt,
             "position_step": position_step,
             "pitch_step": pitch_step,
+            "roll_step": roll_step,
             "joint_step": joint_step,
             "frames": frames,
             "pixels": pixel_frames,
@@ -319,6 +331,11 @@ class EnvConfig:
             ("collision_check", CollisionCheck),
         ):
             put(self, name, _enum(kind, getattr(self, name), name))
+        if self.control is ControlMode.TOOL_ROLL and self.target_fallback is TargetFallback.HOLD:
+            raise InvalidInputError(
+                "control='tool_roll' takes the nearest feasible target: "
+                "target_fallback must be 'nearest', got 'hold'"
+            )
         threshold = real_option(
             self.distance_threshold, "distance_threshold", 0.0, MAX_COORDINATE_M, "m"
         )
@@ -338,6 +355,7 @@ class EnvConfig:
         steps = (
             ("position_step", MAX_COORDINATE_M, "m"),
             ("pitch_step", 2.0 * math.pi, "rad"),
+            ("roll_step", 2.0 * math.pi, "rad"),
             ("joint_step", 2.0 * math.pi, "rad"),
         )
         for name, high, unit in steps:

@@ -30,12 +30,17 @@ _BISECTIONS = 12
 class ControlMode(enum.Enum):
     """How an env reads its arm action.
 
-    TOOL: deltas of the tool point (x, y, z) and pitch, solved by the analytic IK.
+    TOOL: deltas of the tool point (x, y, z) and pitch, solved by the analytic IK
+        (``-v0``, ``-v1``; :class:`ToolSpaceController`).
+    TOOL_ROLL: deltas of the tool point, pitch and wrist roll; an infeasible request
+        goes to the nearest feasible target (``-v2``;
+        :class:`lynxsim.envs.tool_action.ToolRollController`).
     JOINT: deltas of the five joint angles.
     """
 
     TOOL = "tool"
     JOINT = "joint"
+    TOOL_ROLL = "tool_roll"
 
 
 class TargetStatus(enum.IntEnum):

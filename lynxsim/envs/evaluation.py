@@ -289,7 +289,7 @@ def record_expert_episode(
     width: int = 640,
     height: int = 480,
     camera: str = "front",
-    quality: Literal["fast", "medium", "default"] = "fast",
+    quality: Literal["lean", "fast", "medium", "default"] = "fast",
     env_kwargs: Mapping[str, Any] | None = None,
 ) -> EpisodeStats:
     """Record one expert episode to an MP4 (real time: one frame per control step).

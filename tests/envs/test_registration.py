@@ -105,7 +105,7 @@ def test_specs_use_string_entry_points_and_time_limits():
         spec = gym.spec(env_id)
         assert isinstance(spec.entry_point, str)
         assert spec.max_episode_steps == steps[env_id.split("-")[0]]
-    fallback = {"v0": "hold", "v1": "nearest"}
+    fallback = {"v0": "hold", "v1": "nearest", "v2": "nearest"}
     for env_id in ENV_IDS:
         version = env_id.split("-")[1]
         assert gym.make(env_id).unwrapped.controller.fallback.value == fallback[version]
