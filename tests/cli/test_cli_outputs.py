@@ -205,3 +205,21 @@ def test_a_wrong_out_is_refused_before_any_work(cli, tmp_path, argv):
     assert result.code == 1
     assert result.err == f"lynxsim: error: will not replace {folder}: it is a folder\n"
     assert result.out == ""
+
+
+def test_play_never_replaces_a_json_file_that_is_not_its_report(cli, tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "clip.mp4"
+    first = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert first.code == 0, first.err
+    again = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert again.code == 0, again.err  # its own report from before is replaced
+    mine = dest.with_suffix(".json")
+    mine.write_text('{"notes": "my own file"}\n')
+    result = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert result.code == 1
+    assert result.err == (
+        f"lynxsim: error: will not replace {mine}: it is not a lynxsim run report "
+        f"(the report of {dest} goes there; move it or choose another --out)\n"
+    )
+    assert mine.read_text() == '{"notes": "my own file"}\n'
