@@ -92,6 +92,22 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "task.toml"]
 
 
+def test_full_disk_leaves_no_empty_folder(tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "new" / "deeper" / "clip.mp4"
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(20_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["task.toml"]
+
+
 def test_sigterm_removes_partial_outputs(tmp_path):
     body = short_arm_task().replace("segment_duration_s = 1.0", "segment_duration_s = 60.0")
     task = _task(tmp_path, body=body)
