@@ -19,12 +19,13 @@ DEFAULT_QUALITY = Quality.MEDIUM
 
 
 def add_quality_flag(parser: argparse.ArgumentParser) -> None:
-    """Add ``--quality {fast,medium,default}`` (default :data:`DEFAULT_QUALITY`)."""
+    """Add ``--quality {lean,fast,medium,default}`` (default :data:`DEFAULT_QUALITY`)."""
     parser.add_argument(
         "--quality",
         choices=[q.value for q in Quality],
         default=DEFAULT_QUALITY.value,
-        help="rendering preset: fast (no shadows), medium (shadows; default) or default "
+        help="rendering preset: lean (small images: no shadows or skybox, coarse shapes), "
+        "fast (no shadows), medium (shadows; default) or default "
         "(shadows and multisampling, twice the cost of medium)",
     )
 

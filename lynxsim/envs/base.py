@@ -130,7 +130,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         width: int = 640,
         height: int = 480,
         camera: str = "front",
-        render_quality: Literal["fast", "medium", "default"] = "fast",
+        render_quality: Literal["lean", "fast", "medium", "default"] = "fast",
         pixels: str | Sequence[str] = (),
         pixel_width: int = 84,
         pixel_height: int = 84,
@@ -442,25 +442,63 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
                 booleans, complex numbers, object arrays...) or has the wrong shape.
             NonFiniteInputError: The action holds NaN or infinity.
         """
+        command = self._command(action)
+        return self._outcome(command, self._simulate())
+
+    def _command(self, action: npt.ArrayLike) -> tuple[TargetStatus, bool]:
+        """Check an action and write its servo targets into ``data.ctrl`` (a step's first part).
+
+        Returns:
+            What became of the tool target, and whether it was held.
+
+        Raises:
+            InvalidInputError: As :meth:`step`.
+            NonFiniteInputError: As :meth:`step`.
+        """
+        values = self._action_values(action)
+        before = self._controller.target
+        return self._commanded(values, self._controller.apply(values), before)
+
+    def _action_values(self, action: npt.ArrayLike) -> list[float]:
+        """The action checked (as :meth:`step` says), its values clipped to [-1, 1]."""
         a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
         values = a.tolist()
         if not all(map(math.isfinite, values)):
             raise NonFiniteInputError(f"action must be finite, got {values}")
-        values = [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+        return [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+
+    def _commanded(
+        self, values: list[float], status: TargetStatus, before: tuple[float, ...]
+    ) -> tuple[TargetStatus, bool]:
+        """Write the controller's command (moved by ``values``) into ``data.ctrl``.
+
+        Args:
+            values: The action (:meth:`_action_values`).
+            status: What the controller made of it.
+            before: The controller's target before it.
+        """
         ctrl = self.data.ctrl
-        before = self._controller.target
-        status = self._controller.apply(values)
         ctrl[self._arm_act] = self._controller.q_cmd
         if self._GRIPPER_ACTION:
             ctrl[self._grip_act] = (values[-1] + 1.0) * (0.5 * GRIPPER_OPEN_M)
-        collision = self._simulate()
+        return status, self._controller.target == before
 
+    def _outcome(
+        self, command: tuple[TargetStatus, bool], collision: bool
+    ) -> tuple[Obs, float, bool, bool, dict[str, Any]]:
+        """A step's result once its physics ran (its last part; :meth:`step` returns it).
+
+        Args:
+            command: What :meth:`_command` returned.
+            collision: Whether the arm or the cube touched an obstacle.
+        """
+        status, held = command
         obs = self._observation()
         if self._pixels is not None:
             obs["pixels"] = self._pixels.render(self.data)
-        info = self._info(obs, collision, status, held=self._controller.target == before)
+        info = self._info(obs, collision, status, held=held)
         terminated = collision and self.terminate_on_collision
         if self.render_mode == "human":
             self.render()
@@ -490,8 +528,12 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
 
     def _simulate(self) -> bool:
         """Run the control period's physics steps; True on arm–obstacle contact."""
-        every = self.collision_check is CollisionCheck.PHYSICS_STEP
-        return self._scene.simulate(self.frame_skip, every_step=every)
+        return self._scene.simulate(self.frame_skip, every_step=self._physics_step_contacts)
+
+    @property
+    def _physics_step_contacts(self) -> bool:
+        """Whether the contacts are tested after every physics step (else after the last)."""
+        return self.collision_check is CollisionCheck.PHYSICS_STEP
 
     def _touching_obstacle(self) -> bool:
         """Whether the arm or the cube touches an obstacle in the current contacts."""

@@ -235,7 +235,7 @@ class EnvConfig:
         width: int,
         height: int,
         camera: str,
-        render_quality: Literal["fast", "medium", "default"],
+        render_quality: Literal["lean", "fast", "medium", "default"],
         pixels: str | Sequence[str],
         pixel_width: int,
         pixel_height: int,
@@ -274,8 +274,10 @@ class EnvConfig:
             width: Frame width [px].
             height: Frame height [px].
             camera: Camera of the scene (``"front"`` or ``"top"``).
-            render_quality: ``"fast"`` (no shadows), ``"medium"`` (shadows) or ``"default"``
-                (shadows and multisampling); of ``render()`` frames and image observations.
+            render_quality: ``"lean"`` (for small image observations: no shadows, skybox,
+                fog or haze, coarse shapes), ``"fast"`` (no shadows), ``"medium"``
+                (shadows) or ``"default"`` (shadows and multisampling); of ``render()``
+                frames and image observations.
             pixels: Cameras of the image observation (``"front"``, ``"top"``), in
                 channel order; a name or a sequence of distinct names; ``()`` (default):
                 no ``"pixels"`` entry.

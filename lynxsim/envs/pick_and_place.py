@@ -213,9 +213,9 @@ class PickAndPlaceEnv(LynxArmEnv):
     ``terminate_on_collision``, ``collision_check``, ``control_dt`` [s] (0.04: 25 Hz
     over the 2 ms physics step; a non-multiple raises), ``position_step`` [m],
     ``pitch_step`` [rad], ``joint_step`` [rad], ``width``, ``height`` [px],
-    ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"fast"``, ``"medium"``,
-    ``"default"``), ``pixels`` (camera names; ``()``: none), ``pixel_width``,
-    ``pixel_height`` [px] (84), ``randomize`` (None or a
+    ``camera`` (``"front"``, ``"top"``), ``render_quality`` (``"lean"``: for small
+    image observations, ``"fast"``, ``"medium"``, ``"default"``), ``pixels`` (camera
+    names; ``()``: none), ``pixel_width``, ``pixel_height`` [px] (84), ``randomize`` (None or a
     :class:`~lynxsim.envs.Randomization`).
 
     **Rendering**: ``render_mode="rgb_array"`` returns (height, width, 3) uint8 frames

@@ -9,6 +9,9 @@ so the math packages stay free of Gymnasium.
 
 from __future__ import annotations
 
+import warnings
+from typing import Any
+
 import gymnasium as gym
 
 __all__ = [
@@ -19,6 +22,7 @@ __all__ = [
     "REACH_ID",
     "REACH_V2_ID",
     "V2_ENV_IDS",
+    "make_env",
     "register_envs",
 ]
 
@@ -33,6 +37,11 @@ PICK_AND_PLACE_V2_ID = "LynxPickAndPlace-v2"
 """Pick-and-place with the wrist-roll tool action (``control="tool_roll"``)."""
 REACH_V2_ID = "LynxReach-v2"
 """Reach with the wrist-roll tool action (``control="tool_roll"``)."""
+_VECTOR = {
+    _PICK_AND_PLACE: "lynxsim.envs.vector:pick_and_place_vector_env",
+    _REACH: "lynxsim.envs.vector:reach_vector_env",
+}
+"""The batched vector env of each env class (``vectorization_mode="vector_entry_point"``)."""
 _HOLD = {"target_fallback": "hold"}
 """v0: an infeasible tool request holds the previous target."""
 _ROLL = {"control": "tool_roll"}
@@ -61,5 +70,28 @@ def register_envs() -> None:
     for env_id, entry_point, steps, kwargs in _ENVS:
         if env_id not in gym.registry:
             gym.register(
-                id=env_id, entry_point=entry_point, max_episode_steps=steps, kwargs=dict(kwargs)
+                id=env_id,
+                entry_point=entry_point,
+                vector_entry_point=_VECTOR[entry_point],
+                max_episode_steps=steps,
+                kwargs=dict(kwargs),
             )
+
+
+def make_env(env_id: str, **kwargs: Any) -> gym.Env[Any, Any]:
+    """``gym.make(env_id, **kwargs)`` without Gymnasium's "out of date" notice.
+
+    lynxsim's commands and library functions choose an env version on purpose (a dataset
+    of ``-v1`` stays ``-v1``); Gymnasium would otherwise print a deprecation line on
+    stderr whenever a newer version is registered.
+
+    Args:
+        env_id: A registered id, e.g. ``"LynxPickAndPlace-v1"``.
+        **kwargs: The env's options, as ``gym.make`` takes them.
+
+    Returns:
+        The env, wrapped by ``gym.make`` (time limit, order enforcing, checker).
+    """
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*is out of date", category=DeprecationWarning)
+        return gym.make(env_id, **kwargs)

@@ -455,19 +455,36 @@ class ToolRollController(ToolSpaceController):
             target went to the nearest feasible one: :attr:`correction`,
             :attr:`shortfall_m` and :attr:`shortfall_rad` say by how much).
         """
-        arm = [*action[:5]] if len(action) >= 5 else [*action[:4], 0.0]
+        return self.apply_many([self], [action])[0]
+
+    @staticmethod
+    def apply_many(
+        controllers: Sequence[ToolRollController], actions: Sequence[Sequence[float]]
+    ) -> list[TargetStatus]:
+        """:meth:`apply` of each controller to its action, in one :func:`tool_targets` call.
+
+        The controllers must share :attr:`limits`; each ends as its own
+        :meth:`apply` would leave it (:func:`tool_targets` is row by row).
+        """
+        limits = controllers[0].limits
+        if any(c.limits != limits for c in controllers):
+            raise InvalidInputError("controllers applied together must share their limits")
+        arm = [[*a[:5]] if len(a) >= 5 else [*a[:4], 0.0] for a in actions]
         out = tool_targets(
-            np.array([[*self.target, self.roll]]),
-            np.array([self.q_cmd]),
-            np.array([arm]),
-            self.limits,
+            np.array([[*c.target, c.roll] for c in controllers]),
+            np.array([c.q_cmd for c in controllers]),
+            np.array(arm),
+            limits,
         )
-        x, y, z, pitch, roll = out.target[0].tolist()
-        self.target = (x, y, z, pitch)
-        self.roll = roll
-        self.q_cmd = tuple(out.q[0].tolist())
-        dx, dy, dz, d_pitch, d_roll = out.correction[0].tolist()
-        self.correction = (dx, dy, dz, d_pitch, d_roll)
-        self.shortfall_m = math.sqrt(dx * dx + dy * dy + dz * dz)
-        self.shortfall_rad = abs(d_pitch)
-        return TargetStatus(int(out.status[0]))
+        targets, joints = out.target.tolist(), out.q.tolist()
+        corrections, statuses = out.correction.tolist(), out.status.tolist()
+        for c, target, q, correction in zip(controllers, targets, joints, corrections, strict=True):
+            x, y, z, pitch, roll = target
+            c.target = (x, y, z, pitch)
+            c.roll = roll
+            c.q_cmd = tuple(q)
+            dx, dy, dz, d_pitch, d_roll = correction
+            c.correction = (dx, dy, dz, d_pitch, d_roll)
+            c.shortfall_m = math.sqrt(dx * dx + dy * dy + dz * dz)
+            c.shortfall_rad = abs(d_pitch)
+        return [TargetStatus(int(v)) for v in statuses]

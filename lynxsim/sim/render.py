@@ -11,8 +11,10 @@ creates a context; ``with SceneRenderer(...) as r:`` frees it.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from types import TracebackType
 
@@ -32,7 +34,9 @@ __all__ = [
     "RenderSettings",
     "SceneRenderer",
     "camera_names",
+    "set_scene_flags",
     "simplify_polyline",
+    "tessellation",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -171,6 +175,40 @@ class PathTrace:
         return self.points[idx]
 
 
+_LEAN_SHAPES = (8, 4, 1)
+"""Slices, stacks and quads of the built-in shapes with ``Quality.LEAN`` (model: 28, 16, 4)."""
+
+
+@contextlib.contextmanager
+def tessellation(model: mujoco.MjModel, quality: Quality) -> Iterator[None]:
+    """While a GL context is made: the built-in shapes as coarse as ``quality`` draws them.
+
+    MuJoCo builds its shapes once, when the context is made, from
+    ``model.vis.quality``; the model's values are put back afterwards.
+    """
+    q = model.vis.quality
+    kept = (int(q.numslices), int(q.numstacks), int(q.numquads))
+    if quality is Quality.LEAN:
+        q.numslices, q.numstacks, q.numquads = _LEAN_SHAPES
+    try:
+        yield
+    finally:
+        q.numslices, q.numstacks, q.numquads = kept
+
+
+def set_scene_flags(flags: npt.NDArray[np.uint8], quality: Quality) -> None:
+    """Set an ``mjvScene``'s render flags for a preset (``flags``: its ``flags`` array).
+
+    Shadows with MEDIUM and DEFAULT; never reflections (they double the cost of a
+    frame on a CPU renderer for little gain); LEAN also drops skybox, fog and haze.
+    """
+    flags[int(mujoco.mjtRndFlag.mjRND_SHADOW)] = quality in (Quality.MEDIUM, Quality.DEFAULT)
+    flags[int(mujoco.mjtRndFlag.mjRND_REFLECTION)] = False
+    if quality is Quality.LEAN:
+        for flag in ("mjRND_SKYBOX", "mjRND_FOG", "mjRND_HAZE"):
+            flags[int(getattr(mujoco.mjtRndFlag, flag))] = False
+
+
 def camera_names(model: mujoco.MjModel) -> tuple[str, ...]:
     """The names of a model's cameras, in id order."""
     return tuple(model.camera(i).name for i in range(model.ncam))
@@ -204,14 +242,12 @@ class SceneRenderer:
             model.vis.quality.offsamples = 0
         self._model = model
         self._settings = settings
-        self._renderer = mujoco.Renderer(model, settings.height, settings.width)
+        with tessellation(model, settings.quality):
+            self._renderer = mujoco.Renderer(model, settings.height, settings.width)
         self._option = mujoco.MjvOption()
         if not settings.sites:
             self._option.sitegroup[:] = 0
-        # Reflections double the cost of a frame on a CPU renderer for little gain.
-        flags = self._renderer.scene.flags
-        flags[int(mujoco.mjtRndFlag.mjRND_SHADOW)] = settings.quality is not Quality.FAST
-        flags[int(mujoco.mjtRndFlag.mjRND_REFLECTION)] = False
+        set_scene_flags(self._renderer.scene.flags, settings.quality)
 
     @property
     def settings(self) -> RenderSettings:

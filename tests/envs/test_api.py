@@ -355,7 +355,10 @@ def test_control_period_must_be_a_multiple_of_the_physics_step():
         ({"reward_type": "shaped"}, r"reward_type must be one of 'sparse', 'dense'"),
         ({"collision_check": "never"}, "collision_check must be one of"),
         ({"render_mode": "ansi"}, "render_mode must be None or one of"),
-        ({"render_quality": "ultra"}, "render_quality must be one of 'fast', 'medium', 'default'"),
+        (
+            {"render_quality": "ultra"},
+            "render_quality must be one of 'lean', 'fast', 'medium', 'default'",
+        ),
         ({"distance_threshold": 0.0}, "distance_threshold must be > 0 m"),
         ({"collision_penalty": -1.0}, "collision_penalty must be between 0 and 1e"),
         ({"obstacles": (0.1, 0.1)}, "obstacles must be a sequence of Cylinder, Box or Sphere"),

@@ -144,15 +144,25 @@ def test_the_trace_looks_like_the_path_through_every_step():
 
 @pytest.mark.parametrize(
     ("quality", "multisampling", "shadows"),
-    [(Quality.FAST, False, False), (Quality.MEDIUM, False, True), (Quality.DEFAULT, True, True)],
+    [
+        (Quality.LEAN, False, False),
+        (Quality.FAST, False, False),
+        (Quality.MEDIUM, False, True),
+        (Quality.DEFAULT, True, True),
+    ],
     ids=lambda v: getattr(v, "value", str(v)),
 )
 def test_quality_presets_choose_shadows_and_multisampling(quality, multisampling, shadows):
     model = load_arm_scene()
     samples = int(model.vis.quality.offsamples)
     with SceneRenderer(model, RenderSettings(width=64, height=48, quality=quality)) as renderer:
-        assert bool(renderer._renderer.scene.flags[int(mujoco.mjtRndFlag.mjRND_SHADOW)]) is shadows
+        flags = renderer._renderer.scene.flags
+        assert bool(flags[int(mujoco.mjtRndFlag.mjRND_SHADOW)]) is shadows
+        assert not flags[int(mujoco.mjtRndFlag.mjRND_REFLECTION)]
+        lean = quality is Quality.LEAN
+        assert bool(flags[int(mujoco.mjtRndFlag.mjRND_SKYBOX)]) is not lean
     assert int(model.vis.quality.offsamples) == (samples if multisampling else 0)
+    assert int(model.vis.quality.numslices) == 28  # the model's, put back after the context
 
 
 def test_overlay_marks_targets_and_path():
