@@ -33,7 +33,7 @@ that a pose the IK accepts is never refused further on.
 
 
 def wrap_angle(angle: npt.ArrayLike) -> FloatArray:
-    """Wrap angles into [-pi, pi] [rad].
+    """Wrap angles into the interval from -pi to pi [rad].
 
     ``angle - 2 pi rint(angle / (2 pi))``, exact for ``|angle| < 1e15``; an odd
     multiple of pi may come out as pi or -pi. Elementwise like :func:`numpy.sin`:

@@ -307,3 +307,15 @@ class CapabilityError(InvalidInputError):
 
 
 __all__ += ["CapabilityError"]
+
+
+class InfeasibleSceneError(InvalidInputError):
+    """An env's options can never produce an episode (refused at construction).
+
+    E.g. fixed obstacles that leave the arm no point of a task region it reaches
+    top-down, or a success radius no goal can lie outside of. The message names
+    the options and the region.
+    """
+
+
+__all__ += ["InfeasibleSceneError"]

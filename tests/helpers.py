@@ -2,8 +2,26 @@
 
 from __future__ import annotations
 
+import resource
+import signal
+from collections.abc import Callable
+
 import numpy as np
 import numpy.typing as npt
+
+
+def full_disk(limit_bytes: int) -> Callable[[], None]:
+    """A ``preexec_fn`` after which no file of the process grows past ``limit_bytes``.
+
+    Writes beyond fail with EFBIG, as they would with ENOSPC on a full disk
+    (SIGXFSZ ignored, so that the process sees the error instead of dying).
+    """
+
+    def limit() -> None:
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
+
+    return limit
 
 
 def assert_close(

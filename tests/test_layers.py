@@ -34,6 +34,7 @@ BASE = frozenset(
         "registry",
         "run_options",
         "verdicts",
+        "processes",
         "web",
     }
 )

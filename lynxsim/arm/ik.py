@@ -120,7 +120,9 @@ class IKResult:
             context: Prefix naming the target in the message (e.g. the pose).
 
         Raises:
-            NonFiniteInputError, OutOfReachError, JointRangeError.
+            NonFiniteInputError: The target was not finite.
+            OutOfReachError: The target lies out of the arm's reach.
+            JointRangeError: No solution lies within the joint ranges.
         """
         status = IKStatus(int(self.status[index]))
         message = f"{context}: {self.reason(index)}" if context else self.reason(index)

@@ -56,6 +56,7 @@ def _run(args: argparse.Namespace) -> int:
             dataset_id=args.dataset_id,
             images=("front",) if args.images else (),
             image_size=args.image_size,
+            videos=not args.no_videos,
             on_episode=on_episode,
         )
     finally:
@@ -75,6 +76,9 @@ def _run(args: argparse.Namespace) -> int:
         load = f'import minari; ds = minari.load_dataset("{summary.dataset_id}")'
         root = shlex.quote(str(args.out_dir))
         print(f"  load with        MINARI_DATASETS_PATH={root} python -c {shlex.quote(load)}")
+    elif summary.format is DatasetFormat.LEROBOT:
+        path = shlex.quote(str(summary.path))
+        print(f"  load with        python examples/load_lerobot.py {path}  (needs lerobot)")
     else:
         path = json.dumps(str(summary.path))
         load = f"from lynxsim.datasets import read_npz; episodes = read_npz({path})"
@@ -86,7 +90,7 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``dataset`` sub-command."""
     p = sub.add_parser(
         "dataset",
-        help="record expert episodes with action noise as an NPZ or Minari dataset",
+        help="record expert episodes with action noise as an NPZ, Minari or LeRobot dataset",
         description="Record seeded episodes (seeds S, S+1, ...) of a lynxsim Gymnasium env "
         "driven by its scripted expert, with Gaussian noise of NOISE x the action range added "
         "to every action (clipped to the action space), into DIR/DATASET_ID. The same "
@@ -118,7 +122,8 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         "--format",
         choices=[f.value for f in DatasetFormat],
         default=DatasetFormat.NPZ.value,
-        help="npz (NumPy only, default) or minari (needs: pip install 'lynxsim[datasets]')",
+        help="npz (NumPy only, default), minari or lerobot (LeRobotDataset v3.0); the last two "
+        "need: pip install 'lynxsim[datasets]'",
     )
     p.add_argument("--seed", type=seed_int, default=0, help="seed of the first episode (default 0)")
     p.add_argument(
@@ -139,6 +144,12 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         default=84,
         metavar="PX",
         help="side of the images with --images, 16 to 512 px (default 84)",
+    )
+    p.add_argument(
+        "--no-videos",
+        action="store_true",
+        help="with --format lerobot --images: store the images as PNG in the parquet files "
+        "(lossless) instead of MP4 videos (H.264, near lossless)",
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(handler=_run)

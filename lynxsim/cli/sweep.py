@@ -25,8 +25,8 @@ def _sweep(args: argparse.Namespace) -> int:
     from lynxsim.sweep.runner import Backend, LocalBackend, run_sweep
     from lynxsim.sweep.spec import load_sweep
 
-    if args.address is not None and args.backend != "ray":
-        raise InvalidInputError("--address applies to --backend ray only")
+    if args.backend != "ray" and (args.address is not None or args.verbose):
+        raise InvalidInputError("--address and --verbose apply to --backend ray only")
     spec = load_sweep(args.sweep)
     out: Path = args.out_dir
     stem = file_stem(spec.name)
@@ -37,7 +37,7 @@ def _sweep(args: argparse.Namespace) -> int:
         from lynxsim.sweep.ray_backend import RayBackend, require_ray
 
         require_ray()  # before any work
-        backend = RayBackend(address=args.address)
+        backend = RayBackend(address=args.address, verbose=args.verbose)
     else:
         backend = LocalBackend(args.jobs)
     with tqdm(
@@ -49,7 +49,10 @@ def _sweep(args: argparse.Namespace) -> int:
             bar.n = done
             bar.refresh()
 
-        outcome = run_sweep(spec, out, backend=backend, progress=progress)
+        def notice(line: str) -> None:
+            bar.write(f"lynxsim: {line}", file=sys.stderr)
+
+        outcome = run_sweep(spec, out, backend=backend, progress=progress, notice=notice)
     maps = [] if args.no_maps else write_maps(spec, outcome.table, out)
     table = outcome.table
     counts: dict[str, dict[str, dict[str, int]]] = {}
@@ -127,6 +130,11 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
         type=bounded_int(1, MAX_JOBS),
         default=os.cpu_count() or 1,
         help="--backend local: worker processes (default: the CPU count)",
+    )
+    p.add_argument(
+        "--verbose",
+        action="store_true",
+        help="--backend ray: Ray's own log lines on stderr (default: only its errors)",
     )
     p.add_argument("--no-maps", action="store_true", help="write the table only")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")

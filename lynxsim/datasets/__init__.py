@@ -5,8 +5,8 @@ arguments) with its scripted expert (:class:`~lynxsim.envs.PickAndPlaceExpert` o
 :class:`~lynxsim.envs.ReachExpert`); every action gets Gaussian noise of standard
 deviation ``noise`` times the action range, from a generator seeded per episode
 (:func:`noise_generator`), and is clipped to the action space. Episode ``i`` is
-reset with seed ``seed + i``. The same arguments give the same bytes, in both
-formats::
+reset with seed ``seed + i``. The same arguments give the same bytes, in every
+format::
 
     from lynxsim.datasets import read_npz, write_dataset
 
@@ -14,7 +14,7 @@ formats::
     episodes = read_npz(summary.path)  # datasets/lynxsim/pick-and-place-v1/expert-v0
 
 A dataset lives in ``OUT/DATASET_ID`` (default id
-``lynxsim/pick-and-place-v1/expert-v0``), in one of two formats:
+``lynxsim/pick-and-place-v1/expert-v0``), in one of three formats:
 
 - ``npz`` (NumPy only): ``episodes.npz`` with the arrays of every episode
   (layout in :mod:`lynxsim.datasets.npz`) and ``metadata.json`` (env id and
@@ -22,9 +22,13 @@ A dataset lives in ``OUT/DATASET_ID`` (default id
 - ``minari`` (extra ``lynxsim[datasets]``): Minari's standard format with HDF5
   storage; ``MINARI_DATASETS_PATH=OUT`` then ``minari.load_dataset(DATASET_ID)``
   loads it and ``recover_environment()`` makes the env (the same metadata under
-  the key ``"lynxsim"``).
+  the key ``"lynxsim"``);
+- ``lerobot`` (extra ``lynxsim[datasets]``, pyarrow; lerobot itself is not
+  needed): LeRobot's ``LeRobotDataset`` v3.0, one row per step (layout in
+  :mod:`lynxsim.datasets.lerobot_writer`; the same metadata in
+  ``meta/lynxsim.json``); :func:`read_lerobot` reads it back.
 
-Per episode of ``T`` steps, in both: observations (the dict's entries, ``T + 1``
+Per episode of ``T`` steps, in the first two: observations (the dict's entries, ``T + 1``
 rows: the reset's first, the final one last), actions as stepped (``T``, float32,
 noise included), rewards, terminations and truncations (``T``), infos (``T + 1``
 rows, the reset's first: ``is_success``, ``collision``, ``distance`` [m],
@@ -55,6 +59,7 @@ __all__ = [
     "check_noise",
     "default_dataset_id",
     "noise_generator",
+    "read_lerobot",
     "read_npz",
     "record_episode",
     "write_dataset",
@@ -73,6 +78,7 @@ _LAZY = {
     "default_dataset_id": "lynxsim.datasets.layout",
     "MissingExtraError": "lynxsim.datasets.minari_writer",
     "read_npz": "lynxsim.datasets.npz",
+    "read_lerobot": "lynxsim.datasets.lerobot_check",
     "MAX_SEED": "lynxsim.datasets.record",
     "DatasetSummary": "lynxsim.datasets.record",
     "write_dataset": "lynxsim.datasets.record",

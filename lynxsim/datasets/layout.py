@@ -1,7 +1,7 @@
 """Where and how a dataset is stored: its format, its id (a folder inside a root), atomically.
 
 A dataset id is Minari's ``namespace/name-vN`` (e.g. ``lynxsim/pick-and-place-v1/expert-v0``)
-and doubles as the dataset's path inside the root folder, for both formats; a
+and doubles as the dataset's path inside the root folder, for every format; a
 Minari root is what ``MINARI_DATASETS_PATH`` points to. Datasets are written with
 :func:`lynxsim.fileio.atomic_folder`: a killed run leaves no folder under the
 dataset's name (only, after ``kill -9``, a hidden ``.NAME.*.tmp``).
@@ -37,10 +37,13 @@ class DatasetFormat(enum.Enum):
     NPZ: ``episodes.npz`` and ``metadata.json`` (NumPy only; :mod:`lynxsim.datasets.npz`).
     MINARI: Minari's standard format, HDF5 storage (extra ``lynxsim[datasets]``;
         :mod:`lynxsim.datasets.minari_writer`).
+    LEROBOT: LeRobot's ``LeRobotDataset`` v3.0: parquet, JSON and MP4 (extra
+        ``lynxsim[datasets]``; :mod:`lynxsim.datasets.lerobot_writer`).
     """
 
     NPZ = "npz"
     MINARI = "minari"
+    LEROBOT = "lerobot"
 
 
 def default_dataset_id(env_id: str) -> str:

@@ -25,6 +25,8 @@ from lynxsim.datasets.layout import (
     dataset_folder,
     default_dataset_id,
 )
+from lynxsim.datasets.lerobot_meta import LeRobotLayout
+from lynxsim.datasets.lerobot_writer import LeRobotWriter, require_pyarrow
 from lynxsim.datasets.minari_writer import MinariWriter, require_minari, write_namespaces
 from lynxsim.datasets.npz import NpzWriter
 from lynxsim.envs.evaluation import make_policy
@@ -84,10 +86,11 @@ def write_dataset(
     env_id: str = PICK_AND_PLACE_ID,
     noise: float = 0.1,
     seed: int = 0,
-    format: DatasetFormat | Literal["npz", "minari"] = DatasetFormat.NPZ,
+    format: DatasetFormat | Literal["npz", "minari", "lerobot"] = DatasetFormat.NPZ,
     dataset_id: str | None = None,
     images: Sequence[str] = (),
     image_size: int = 84,
+    videos: bool = True,
     on_episode: Callable[[Episode], None] | None = None,
 ) -> DatasetSummary:
     """Record ``episodes`` episodes of the env's scripted expert into ``out / dataset_id``.
@@ -110,13 +113,16 @@ def write_dataset(
             :data:`~lynxsim.datasets.MAX_NOISE`.
         seed: Seed of the first episode; the last, ``seed + episodes - 1``, at
             most :data:`MAX_SEED`.
-        format: ``"npz"`` or ``"minari"``.
+        format: ``"npz"``, ``"minari"`` or ``"lerobot"`` (LeRobot v3.0, see
+            :mod:`lynxsim.datasets.lerobot_writer`).
         dataset_id: Minari-style id, also the dataset's path under ``out``
             (default :func:`default_dataset_id`).
         images: Cameras whose images the observations carry (the env's
             ``pixels`` option: an ``observations/pixels`` entry, uint8
             (T + 1, size, size, 3 x cameras)); empty: none.
         image_size: Side of the images [px], 16 to 512.
+        videos: LeRobot only: the images as MP4 videos (H.264, lossy), else as
+            PNG inside the parquet files (lossless, larger).
         on_episode: Called with each episode once recorded.
 
     Returns:
@@ -125,7 +131,8 @@ def write_dataset(
     Raises:
         InvalidInputError: A bad argument (the message names it and the valid values).
         OutputPathError: The dataset's folder exists, or its path crosses a file.
-        MissingExtraError: ``format="minari"`` without the ``datasets`` extra.
+        MissingExtraError: ``format="minari"`` or ``"lerobot"`` without the
+            ``datasets`` extra.
     """
     if not isinstance(out, str | os.PathLike):
         raise InvalidTypeError(f"out must be a path, got {short(out)}")
@@ -148,6 +155,10 @@ def write_dataset(
     dest = check_new_folder(dataset_folder(out, dataset_id), NEW_FOLDER_HINT)
     if fmt is DatasetFormat.MINARI:
         require_minari()  # before any work
+    elif fmt is DatasetFormat.LEROBOT:
+        require_pyarrow()
+    if not isinstance(videos, bool):
+        raise InvalidTypeError(f"videos must be True or False, got {short(videos)}")
     if isinstance(images, str):
         images = (images,)
     image_size = check_count(image_size, "image_size", 16, 512)
@@ -157,6 +168,8 @@ def write_dataset(
     env = gym.make(env_id, **pixels)
     spec = env.spec if env.spec is not None else gym.spec(env_id)
     try:
+        if fmt is DatasetFormat.LEROBOT:
+            LeRobotLayout.of_env(env, videos)  # refuses what it cannot store, before any write
         std = action_noise_std(env.action_space, noise)
         policy = make_policy("expert", env)
         description = (
@@ -167,7 +180,7 @@ def write_dataset(
         steps = successes = collisions = 0
         with (
             atomic_folder(dest, NEW_FOLDER_HINT) as tmp,
-            _writer(fmt, tmp, env, dataset_id, description) as w,
+            _writer(fmt, tmp, env, dataset_id, description, videos) as w,
         ):
             for i in range(episodes):
                 episode = record_episode(env, policy, seed + i, std, noise_generator(seed + i))
@@ -190,10 +203,17 @@ def write_dataset(
 
 
 def _writer(
-    fmt: DatasetFormat, folder: Path, env: gym.Env[Any, Any], dataset_id: str, description: str
+    fmt: DatasetFormat,
+    folder: Path,
+    env: gym.Env[Any, Any],
+    dataset_id: str,
+    description: str,
+    videos: bool,
 ) -> _Writer:
     if fmt is DatasetFormat.NPZ:
         return NpzWriter(folder)
+    if fmt is DatasetFormat.LEROBOT:
+        return LeRobotWriter(folder, env, videos)
     return MinariWriter(folder, env, dataset_id, description)
 
 
@@ -209,7 +229,7 @@ def _metadata(
     episodes: int,
     steps: int,
 ) -> dict[str, Any]:
-    """The metadata lynxsim keeps: NPZ's ``metadata.json``, the ``"lynxsim"`` key in Minari's."""
+    """What lynxsim keeps: NPZ's metadata.json, Minari's key "lynxsim", meta/lynxsim.json."""
     index = getattr(type(env.unwrapped), "OBS_INDEX", {})
     return {
         "format": fmt.value,

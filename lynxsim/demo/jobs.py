@@ -14,6 +14,8 @@ from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 from typing import Generic, TypeVar
 
+from lynxsim.processes import pool_initializer
+
 __all__ = ["Job", "JobProgress", "job_progress", "run_jobs"]
 
 T_co = TypeVar("T_co", covariant=True)
@@ -53,7 +55,7 @@ def run_jobs(
             pool each time a job ends (``progress(k, 1.0)``).
         workers: Processes running jobs at the same time (1: in this process,
             one after the other). Workers are spawned, never forked: no MuJoCo
-            or GL state is shared.
+            or GL state is shared; they end when this process dies.
 
     Returns:
         The result of each job.
@@ -70,7 +72,10 @@ def run_jobs(
             results[i] = jobs[i].work(job_progress(progress, done))
         return [results[i] for i in range(len(jobs))]
     context = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=context)
+    initializer, initargs = pool_initializer()  # the workers die with this process
+    pool = ProcessPoolExecutor(
+        max_workers=workers, mp_context=context, initializer=initializer, initargs=initargs
+    )
     try:
         futures: dict[Future[T_co], int] = {pool.submit(jobs[i].work, None): i for i in order}
         for done, future in enumerate(as_completed(futures)):

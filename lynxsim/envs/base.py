@@ -44,7 +44,12 @@ from lynxsim.envs.randomization import Domain, Randomization
 from lynxsim.envs.reward import GoalRewards, RewardType, goal_distance, goal_reward
 from lynxsim.envs.tool_action import ToolLimits, ToolRollController
 from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD, PolarRegion
-from lynxsim.errors import InvalidInputError, LynxsimError, NonFiniteInputError
+from lynxsim.errors import (
+    InfeasibleSceneError,
+    InvalidInputError,
+    LynxsimError,
+    NonFiniteInputError,
+)
 from lynxsim.inputs import real_array
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene
 from lynxsim.sim.arm.env_scene import EnvScene
@@ -90,6 +95,9 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
 
     Raises:
         InvalidInputError: A bad argument (the message names it and the valid choices).
+        InfeasibleSceneError: Options that can never produce an episode (fixed
+            obstacles that block a task region, a success radius no goal lies
+            outside of).
     """
 
     metadata: dict[str, Any] = {  # noqa: RUF012  (Gymnasium's convention; copied per instance)
@@ -212,6 +220,22 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self._checker = scene.checker(base)
         self._set_goal(np.zeros(3))
         self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._check_feasible()
+
+    def _check_feasible(self) -> None:
+        """Refuse options that can never produce an episode.
+
+        Raises:
+            InfeasibleSceneError: The fixed obstacles block a region the task draws
+                from, or no goal there lies outside ``distance_threshold``.
+        """
+        raise NotImplementedError
+
+    def _refuse(self, what: str) -> None:
+        raise InfeasibleSceneError(
+            f"{type(self).__name__} with obstacles={self._obstacles!r} and distance_threshold="
+            f"{self.distance_threshold} m can never draw an episode: {what}"
+        )
 
     @staticmethod
     def _make_controller(config: EnvConfig) -> ToolSpaceController | JointSpaceController:
@@ -373,8 +397,18 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         draw_scene(self.np_random, self.random_obstacles, ready, task, place, self._workable)
 
     def _workable(self, columns: list[WorkColumn]) -> bool:
-        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`."""
-        return workable(self._checker, self._q_ready, columns)
+        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`.
+
+        A column starts no lower than the tool target box's floor: a small cube's
+        centre lies below it, and the tool goes no lower than the floor (which
+        keeps the fingertips above the table) to grasp it or put it down.
+        """
+        floor = _TARGET_BOX_LOWER[2]
+        raised = [
+            c._replace(point=np.array([c.point[0], c.point[1], max(float(c.point[2]), floor)]))
+            for c in columns
+        ]
+        return workable(self._checker, self._q_ready, raised)
 
     def _draw_point(
         self, region: PolarRegion, away_from: npt.ArrayLike | None = None

@@ -35,6 +35,8 @@ __all__ = [
     "WorkColumn",
     "draw_point",
     "draw_scene",
+    "farthest_apart",
+    "task_points",
     "workable",
 ]
 
@@ -129,6 +131,36 @@ def draw_point(
     raise InvalidInputError(
         f"found no point of {region} that the arm reaches top-down clear of {tuple(obstacles)}"
     )
+
+
+def task_points(region: PolarRegion, obstacles: Sequence[Obstacle]) -> FloatArray:
+    """The points of a region that :func:`draw_point` could draw, among a fixed sample.
+
+    As many points as :func:`draw_point` tries at most, from a generator of its
+    own (seed 0): an empty result means the region is blocked (no reset would
+    find a point there).
+
+    Returns:
+        Shape (K, 3) [m], K >= 0.
+    """
+    p = sample_points(np.random.default_rng(0), region, _DRAW_BATCH * _MAX_DRAWS)
+    ok = top_down_reachable(p)
+    for obstacle in obstacles:
+        ok &= clear_of_obstacle(p, obstacle)
+    points: FloatArray = p[ok]
+    return points
+
+
+def farthest_apart(a: FloatArray, b: FloatArray) -> float:
+    """About the largest distance between a point of ``a`` (n, 3) and one of ``b`` (m, 3) [m].
+
+    Over at most 400 evenly spaced points of each (a lower bound of the largest).
+    """
+    if not (a.size and b.size):
+        return 0.0
+    a, b = a[:: max(1, len(a) // 400)], b[:: max(1, len(b) // 400)]  # 400 x 400 pairs at most
+    d = a[:, None, :] - b[None, :, :]
+    return float(np.sqrt(np.einsum("ijk,ijk->ij", d, d).max()))
 
 
 def draw_scene(

@@ -19,7 +19,7 @@ pitch that is.
 
 Usage::
 
-    env = gym.make("LynxPickAndPlace-v1", random_obstacles=(1, 3))
+    env = gym.make("LynxPickAndPlace-v2", random_obstacles=(1, 3))
     expert = PickAndPlaceExpert(env)
     obs, _ = env.reset(seed=0)
     expert.reset()
@@ -36,12 +36,14 @@ import gymnasium as gym
 import numpy as np
 import numpy.typing as npt
 
+from lynxsim.angles import quat_yaw
 from lynxsim.arm import ik_nearest
 from lynxsim.envs.base import LynxArmEnv
 from lynxsim.envs.control import ToolSpaceController
 from lynxsim.envs.pick_and_place import CUBE_HALF_SIZE_M, PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.routes import (
+    ARRIVED_RAD,
     Mover,
     Planner,
     Point,
@@ -49,6 +51,7 @@ from lynxsim.envs.routes import (
     braking,
     toward,
 )
+from lynxsim.envs.tool_action import ToolRollController
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
 from lynxsim.errors import InvalidInputError
 
@@ -115,6 +118,19 @@ _DOWN_M = 0.004
 """A cube within this of its resting height [m] may be let go."""
 _PLACE_ABOVE_M = 0.002
 """The cube is let go this high above its resting height [m]."""
+_QUARTER_RAD = 0.5 * math.pi
+"""A cube looks the same turned by a quarter turn about the vertical [rad]."""
+_JITTER_MEMORY = 0.9
+"""Weight of the past in the running mean of the command's squared jitter [-]."""
+_JITTER_MARGIN = 2.5
+"""Fingertips hover this many jitter deviations higher above the cube's top [-]."""
+_OPEN_FOR_PLUNGE_M = 0.003
+"""The fingers must stand this much wider than the cube before a plunge [m]."""
+_BESIDE_ALONG_M = 0.007
+"""With ``-v2``, a plunge has the cube between the fingers within this along the pads [m]
+(18 mm wide on a 25 mm cube)."""
+_PRESSED_M = 0.004
+"""A cube this far below its resting height is pressed into the table by a finger [m]."""
 
 
 def _tool_env(
@@ -158,6 +174,25 @@ def _across_along(dx: float, dy: float, azimuth: float) -> tuple[float, float]:
     return dx * c + dy * s, dy * c - dx * s
 
 
+def _grasp_roll(base: float, yaw: float, roll: float) -> float:
+    """The wrist roll that closes the fingers (pointing down) across faces of a cube [rad].
+
+    The fingers close along the azimuth ``base - (roll - GRIP_ROLL_RAD)``; the roll
+    chosen puts it on a face normal (``yaw`` plus a multiple of a quarter turn),
+    the nearest the roll ``roll`` now unless that is more than 3/16 of a turn from
+    :data:`GRIP_ROLL_RAD` (then a quarter turn back): a cube turned by about an
+    eighth of a turn does not make the choice flip from step to step.
+    """
+    closing = base - (roll - GRIP_ROLL_RAD)
+    turn = (closing - yaw + 0.5 * _QUARTER_RAD) % _QUARTER_RAD - 0.5 * _QUARTER_RAD
+    new = roll + turn
+    if new - GRIP_ROLL_RAD > 0.75 * _QUARTER_RAD:
+        new -= _QUARTER_RAD
+    elif GRIP_ROLL_RAD - new > 0.75 * _QUARTER_RAD:
+        new += _QUARTER_RAD
+    return new
+
+
 def _pitch_for(point: Point, q_ref: FloatArray) -> float:
     """Pitch for a tool point: straight down if the IK reaches it so, else the nearest that does."""
     for pitch in _PITCH_SEARCH_RAD:
@@ -187,6 +222,15 @@ class PickAndPlaceExpert:
     The approach and the carry are planned (module docstring); a goal above the
     table's resting height is held in the air (the cube stays gripped); a goal
     on the table is placed and released, and the arm backs off straight up.
+    With the ``-v2`` action (``control="tool_roll"``) the wrist roll turns the
+    fingers, above the cube, to close across two of its faces however the cube
+    is turned about the vertical, and holds the roll it has in the other phases
+    (the planned moves hold it too). Its grasp also copes with noisy actions: it
+    estimates the command's jitter per step (how far the command strays from
+    where the last action put it), hovers that much higher above the cube, plunges
+    only when the fingers stand open and the tool and the command are centred,
+    takes the fingertips past the cube's top in one step, and gives a plunge up as
+    soon as a finger presses the cube into the table.
     Closed loop: every step decides from the observation; a grasp that misses is
     opened and tried again, a cube that slips out or is knocked off the goal is
     picked up again, a command pushed off a planned route is re-planned.
@@ -201,6 +245,7 @@ class PickAndPlaceExpert:
     def __init__(self, env: gym.Env[Any, Any]) -> None:
         u, controller = _tool_env(env, PickAndPlaceEnv)
         self._controller = controller
+        self._rolls = isinstance(controller, ToolRollController)
         self._planner = Planner(u, controller)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = PickAndPlaceEnv.OBS_INDEX
@@ -217,10 +262,14 @@ class PickAndPlaceExpert:
         self._on_top = half + _FINGERTIP_M - _ON_TOP_SLACK_M
         self._gripped = (size - 0.004, size + 0.002)
         self._opened = size + 0.0025
+        self._size = size
         self.phase = _Phase.APPROACH
         self._count = 0
         self._offset: Point = (0.0, 0.0, 0.0)
         self._hold_at: Pose = (0.0, 0.0, 0.0, 0.0)
+        self._roll_now = self._roll_held = self._roll_grasp = GRIP_ROLL_RAD
+        self._jitter_sq = 0.0
+        self._last: tuple[Pose, list[float]] | None = None
         self._mover.route = None
         self._planner.reset()
 
@@ -228,6 +277,28 @@ class PickAndPlaceExpert:
         self.phase = phase
         self._count = 0
         self._mover.route = None
+        self._roll_held = self._roll_now
+
+    def _jitter(self, cmd: Pose) -> float:
+        """Running estimate of the command's jitter per step and axis [m] (action noise).
+
+        The command should be the last one moved by the last action; what it is
+        beyond that is noise (or the env's correction of an unreachable request).
+        """
+        if self._last is not None:
+            last, arm = self._last
+            s = self._controller.position_step
+            miss = sum((cmd[i] - last[i] - max(-1.0, min(1.0, arm[i])) * s) ** 2 for i in range(3))
+            self._jitter_sq = _JITTER_MEMORY * self._jitter_sq + (1.0 - _JITTER_MEMORY) * miss / 3
+        return math.sqrt(self._jitter_sq)
+
+    def _roll_action(self, phase: _Phase) -> float:
+        """Roll action: to the grasp roll above and at the cube, else holding the phase's."""
+        aligning = phase in (_Phase.ALIGN, _Phase.PLUNGE, _Phase.GRASP, _Phase.REOPEN)
+        want = self._roll_grasp if aligning else self._roll_held
+        c = self._controller
+        step = c.roll_step if isinstance(c, ToolRollController) else 1.0
+        return max(-1.0, min(1.0, (want - self._roll_now) / step))
 
     def _transit(
         self, cmd: Pose, tool: Point, q_cmd: FloatArray, dest: Point, *, grasped: bool
@@ -237,7 +308,7 @@ class PickAndPlaceExpert:
         return self._mover.step(cmd, tool, q_cmd, pose, grasped=grasped)
 
     def __call__(self, observation: dict[str, FloatArray]) -> npt.NDArray[np.float32]:
-        """The action for an observation, shape (5,), float32 in [-1, 1]."""
+        """The action for an observation, shape (5,) (``-v2``: (6,)), float32 in [-1, 1]."""
         o = observation["observation"]
         ix = self._idx
         x, y, z = o[ix["commanded_tool_position"]].tolist()
@@ -256,6 +327,12 @@ class PickAndPlaceExpert:
         self._count += 1
         phase = self.phase
         grip = 1.0
+        closing = float(q_cmd[0])  # azimuth along which the fingers close
+        align = self._align
+        if self._rolls:
+            self._roll_now = float(q_cmd[4])
+            closing -= self._roll_now - GRIP_ROLL_RAD
+            align += _JITTER_MARGIN * self._jitter(cmd)
 
         if phase is _Phase.APPROACH:
             hover = (cube[0], cube[1], cube[2] + _HOVER_M)
@@ -264,14 +341,27 @@ class PickAndPlaceExpert:
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.ALIGN:
             # Above the cube, fingertips clear of its top, until centred over it.
-            point = (cube[0], cube[1], cube[2] + self._align)
+            point = (cube[0], cube[1], cube[2] + align)
             arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), c, _SLOW)
-            across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], float(q_cmd[0]))
+            if self._rolls:
+                yaw = quat_yaw(*o[ix["cube_quaternion"]].tolist())
+                self._roll_grasp = _grasp_roll(float(q_cmd[0]), yaw, self._roll_grasp)
+                at = at and abs(self._roll_grasp - self._roll_now) < ARRIVED_RAD
+            across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
             centred = (
                 abs(across) < _CENTRED_ACROSS_M
                 and abs(along) < _CENTRED_ALONG_M
                 and abs(tool[2] - point[2]) < _AROUND_M
             )
+            if self._rolls:  # the command too: the next step starts from it
+                across_cmd, along_cmd = _across_along(cmd[0] - cube[0], cmd[1] - cube[1], closing)
+                centred = (
+                    centred
+                    and abs(across_cmd) < _CENTRED_ACROSS_M
+                    and abs(along_cmd) < _CENTRED_ALONG_M
+                    and abs(self._roll_grasp - self._roll_now) < ARRIVED_RAD
+                    and opening > self._size + _OPEN_FOR_PLUNGE_M
+                )
             if centred or (at and self._count > _PRE_GRASP_WAIT):
                 # Down at once: one more step of noisy actions would undo the centring.
                 self._enter(_Phase.PLUNGE)
@@ -281,18 +371,25 @@ class PickAndPlaceExpert:
             # count from the resting centre: a cube pressed into the table reads lower.
             base = max(cube[2], self._rest_z)
             point = (cube[0], cube[1], max(base + _GRASP_ABOVE_M, c.box[0][2]))
-            dive = (*point[:2], max(point[2], tool[2] - _PRESS_M))
+            press_from = tool[2]
+            if self._rolls:  # the press limit counts from where the fingertips reach the top
+                press_from = min(press_from, base + self._align - _ALIGN_ABOVE_TOP_M)
+            dive = (*point[:2], max(point[2], press_from - _PRESS_M))
             arm = _per_axis(cmd, (*dive, _pitch_for(point, q_cmd)), c)
-            around = (
-                math.dist(tool[:2], cube[:2]) < _AROUND_M
-                and tool[2] - base < _GRASP_ABOVE_M + _AROUND_M
-            )
+            if self._rolls:  # the pads are wide: an offset along them does no harm
+                across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
+                beside = abs(across) < _AROUND_M and abs(along) < _BESIDE_ALONG_M
+            else:
+                beside = math.dist(tool[:2], cube[:2]) < _AROUND_M
+            around = beside and tool[2] - base < _GRASP_ABOVE_M + _AROUND_M
             if around:
                 self._enter(_Phase.GRASP)
                 self._hold_at = point_pose = (cmd[0], cmd[1], point[2], TOP_DOWN_PITCH_RAD)
                 arm, _ = _straight(cmd, point_pose, c, _SLOW)
-            elif self._count > _PLUNGE_STEPS or (
-                self._count >= 1 and tool[2] - base > self._on_top
+            elif (
+                self._count > _PLUNGE_STEPS
+                or (self._count >= 1 and tool[2] - base > self._on_top)
+                or (self._rolls and cube[2] < self._rest_z - _PRESSED_M)
             ):  # landed on the cube or beside it: up and again
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.GRASP:  # close, holding the arm where the grasp began
@@ -304,7 +401,7 @@ class PickAndPlaceExpert:
                 elif self._count > _MAX_WAIT_STEPS:
                     self._enter(_Phase.REOPEN)
         elif phase is _Phase.REOPEN:
-            point = (cmd[0], cmd[1], cube[2] + self._align)
+            point = (cmd[0], cmd[1], cube[2] + align)
             arm, _ = _straight(cmd, (*point, cmd[3]), c, _SLOW)
             if self._count >= _REOPEN_STEPS:
                 self._enter(_Phase.ALIGN)
@@ -334,6 +431,9 @@ class PickAndPlaceExpert:
             # left alone: picking it up again would risk more than it can win).
             if math.dist(cube, goal) > self._threshold:
                 self._enter(_Phase.APPROACH)
+        if self._rolls:
+            self._last = (cmd, arm)
+            return np.array([*arm, self._roll_action(self.phase), grip], dtype=np.float32)
         return np.array([*arm, grip], dtype=np.float32)
 
     def _carry(
@@ -398,6 +498,9 @@ class ReachExpert:
     def __init__(self, env: gym.Env[Any, Any]) -> None:
         u, controller = _tool_env(env, ReachEnv)
         self._controller = controller
+        self._roll_step = (
+            controller.roll_step if isinstance(controller, ToolRollController) else 0.0
+        )
         self._planner = Planner(u, controller)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = ReachEnv.OBS_INDEX
@@ -409,7 +512,10 @@ class ReachExpert:
         self._planner.reset()
 
     def __call__(self, observation: dict[str, FloatArray]) -> npt.NDArray[np.float32]:
-        """The action for an observation, shape (4,), float32 in [-1, 1]."""
+        """The action for an observation, shape (4,) (``-v2``: (5,)), float32 in [-1, 1].
+
+        With the ``-v2`` action the roll is held at :data:`GRIP_ROLL_RAD`.
+        """
         o = observation["observation"]
         ix = self._idx
         x, y, z = o[ix["commanded_tool_position"]].tolist()
@@ -419,4 +525,7 @@ class ReachExpert:
         dest = (*goal, _pitch_for(goal, q_cmd))
         tool: Point = tuple(o[ix["tool_position"]].tolist())
         arm, _ = self._mover.step(cmd, tool, q_cmd, dest, grasped=False)
+        if self._roll_step:
+            roll = (GRIP_ROLL_RAD - float(q_cmd[4])) / self._roll_step
+            arm.append(max(-1.0, min(1.0, roll)))
         return np.array(arm, dtype=np.float32)

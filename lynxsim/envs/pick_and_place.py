@@ -1,4 +1,4 @@
-"""``LynxPickAndPlace-v1``: pick the cube up and put it at a goal, around the obstacles."""
+"""``LynxPickAndPlace-v1``/``-v2``: pick the cube up and put it at a goal, around the obstacles."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import numpy as np
 
 from lynxsim.envs.base import FloatArray, LynxArmEnv, Obs, WorkColumn
 from lynxsim.envs.config import real_option
+from lynxsim.envs.episodes import farthest_apart, task_points
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, PolarRegion
 from lynxsim.sim.arm.model import CUBE_BODY
 
@@ -65,6 +66,15 @@ class PickAndPlaceEnv(LynxArmEnv):
     With ``control="joint"`` the action is ``Box(-1, 1, (6,), float32)``: deltas of
     q1..q5 (+1 = + ``joint_step`` [rad], 0.05; clipped to the joint ranges), then
     the gripper as above.
+
+    ``-v2`` (``control="tool_roll"``): ``Box(-1, 1, (6,), float32)``, the tool action
+    above with the wrist roll inserted at index 4 (+1 = + ``roll_step`` [rad], 0.1;
+    clipped to the roll joint's range 0..2 pi; pointing down, the fingers close
+    along the azimuth ``q1 - (roll - pi)``), the gripper at index 5. A request the
+    controller cannot take goes to the **nearest** feasible target (in action
+    units; it slides along the reach boundary and the joint and pitch limits,
+    :mod:`lynxsim.envs.tool_action`), and ``info["target_correction"]`` (shape (5,),
+    commanded minus requested x, y, z [m], pitch, roll [rad]) says what changed.
 
     **Observation** (a dict, every array float64 and freshly allocated):
     ``achieved_goal`` is the cube's position, ``desired_goal`` the goal, both
@@ -190,7 +200,8 @@ class PickAndPlaceEnv(LynxArmEnv):
     physics step, or of every physics step with ``collision_check="physics_step"``),
     ``distance`` [m], ``reward_goal``, ``reward_collision``, ``target_status`` (a
     :class:`~lynxsim.envs.control.TargetStatus`), ``target_held``,
-    ``target_shortfall_m`` [m] and ``target_shortfall_rad`` [rad].
+    ``target_shortfall_m`` [m] and ``target_shortfall_rad`` [rad]; ``-v2`` adds
+    ``target_correction``.
 
     **Arguments** (all keyword): ``goal_in_air_prob`` (0.5) and those of
     :class:`~lynxsim.envs.base.LynxArmEnv`: ``render_mode`` (None, ``"rgb_array"``,
@@ -242,7 +253,12 @@ class PickAndPlaceEnv(LynxArmEnv):
       ``render()``, or the first ``reset`` with ``pixels``); the other order can
       clash over the EGL/GPU driver libraries.
 
-    **Version history**: v1: an infeasible tool request moves the target as far as
+    **Version history**: v2: the wrist roll in the tool action (6-D), and an
+    infeasible request goes to the nearest feasible target, sliding along the
+    reach boundary and the pitch limits (was: the farthest feasible point along
+    the request, which stops dead at the edge of the reach), with
+    ``info["target_correction"]``; the observation is v1's (``control="tool_roll"``;
+    v1 still registered). v1: an infeasible tool request moves the target as far as
     is feasible (was: held); ``random_obstacles``, ``pixels`` and ``randomize``
     (off by default). v0: first release (still registered, with
     ``target_fallback="hold"``).
@@ -296,6 +312,18 @@ class PickAndPlaceEnv(LynxArmEnv):
         self._table_region = PolarRegion(r, a, (self._rest_z, self._rest_z))
         lo, hi = self.AIR_HEIGHT_M
         self._air_region = PolarRegion(r, a, (self._rest_z + lo, self._rest_z + hi))
+
+    def _check_feasible(self) -> None:
+        self._set_cube_half_size(CUBE_HALF_SIZE_M)  # (runs within the base's __init__)
+        cubes = task_points(self._table_region, self._obstacles)
+        if not cubes.size:
+            self._refuse(f"the obstacles block every cube start of {self._table_region}")
+        goal_regions = [self._table_region] * (self.goal_in_air_prob < 1.0)
+        goal_regions += [self._air_region] * (self.goal_in_air_prob > 0.0)
+        for region in goal_regions:
+            goals = task_points(region, self._obstacles)
+            if farthest_apart(cubes, goals) <= self.distance_threshold:
+                self._refuse(f"no goal of {region} lies outside distance_threshold of a cube")
 
     def _sample_task(self) -> None:
         size = self.domain.cube_size_m

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import number_in_range
+from lynxsim.scene import MIN_CUBE_MASS_KG
 from lynxsim.sim.arm.randomizer import Domain
 from lynxsim.sim.arm.task import GRIPPER_OPEN_M
 
@@ -56,7 +57,9 @@ class Randomization:
     Attributes:
         cube_size_m: Cube edge range [m], within 0.005..0.03 (the open gripper);
             None: 25 mm. The cube rests on the table whatever its size.
-        cube_mass_kg: Cube mass range [kg], within 0..0.5 (lo > 0); None: 10 g.
+        cube_mass_kg: Cube mass range [kg], within 1e-4..0.5
+            (:data:`lynxsim.scene.MIN_CUBE_MASS_KG`: the lightest cube a scene
+            holds); None: 10 g.
         cube_friction: Range of the cube's sliding friction coefficient [-],
             within 0..5 (lo > 0); None: 1. MuJoCo takes the larger coefficient
             of the two geoms in contact (fingers and table: 1).
@@ -97,6 +100,11 @@ class Randomization:
                 pair = _interval(value, name, low, high, unit)
                 if pair[0] <= 0.0:
                     raise InvalidInputError(f"{name} must be > 0 {unit}, got {value!r}")
+                if name == "cube_mass_kg" and pair[0] < MIN_CUBE_MASS_KG:
+                    raise InvalidInputError(
+                        f"cube_mass_kg must be >= {MIN_CUBE_MASS_KG:g} kg (the lightest cube "
+                        f"a scene holds), got {value!r}"
+                    )
                 object.__setattr__(self, name, pair)
         limits = (
             ("servo_gain_tolerance", _MAX_TOLERANCE, ""),

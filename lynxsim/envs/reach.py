@@ -1,4 +1,4 @@
-"""``LynxReach-v1``: bring the tool point to a goal, around the obstacles."""
+"""``LynxReach-v1``/``-v2``: bring the tool point to a goal, around the obstacles."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from typing import ClassVar
 import numpy as np
 
 from lynxsim.envs.base import READY_TOOL_POSE, LynxArmEnv, Obs
+from lynxsim.envs.episodes import farthest_apart, task_points
 from lynxsim.envs.pick_and_place import _fields
 from lynxsim.envs.workspace import PolarRegion
 
@@ -30,7 +31,10 @@ class ReachEnv(LynxArmEnv):
     request moves the target as far as is feasible in ``-v1``, holds it in ``-v0``;
     ``info`` reports it). With
     ``control="joint"``: ``Box(-1, 1, (5,), float32)``, deltas of q1..q5
-    (+1 = + ``joint_step`` [rad], 0.05).
+    (+1 = + ``joint_step`` [rad], 0.05). ``-v2`` (``control="tool_roll"``):
+    ``Box(-1, 1, (5,), float32)``, the tool action with the wrist roll at index 4
+    (+1 = + ``roll_step`` [rad], 0.1); an infeasible request goes to the nearest
+    feasible target, as in :class:`~lynxsim.envs.PickAndPlaceEnv`.
 
     **Observation** (a dict, float64, freshly allocated; with ``pixels`` also the
     uint8 ``"pixels"``): ``achieved_goal`` is the
@@ -72,9 +76,13 @@ class ReachEnv(LynxArmEnv):
     touches the cube is refused) and **for RL users**: as
     :class:`~lynxsim.envs.PickAndPlaceEnv`, without ``goal_in_air_prob``.
 
-    **Version history**: v1: an infeasible tool request moves the target as far as
-    is feasible (was: held); ``random_obstacles`` and ``pixels`` (off by default). v0: first
-    release (still registered, with ``target_fallback="hold"``).
+    **Version history**: v2: the wrist roll in the tool action (5-D), and an
+    infeasible request goes to the nearest feasible target, sliding along the reach
+    boundary (was: it stops dead at the edge of the reach), with
+    ``info["target_correction"]`` (``control="tool_roll"``; v1 still registered).
+    v1: an infeasible tool request moves the target as far as is feasible (was:
+    held); ``random_obstacles`` and ``pixels`` (off by default). v0: first release
+    (still registered, with ``target_fallback="hold"``).
     """
 
     OBS_INDEX: ClassVar[dict[str, slice]] = _fields(
@@ -94,6 +102,13 @@ class ReachEnv(LynxArmEnv):
         radius=(0.10, 0.25), azimuth=(-math.radians(80), math.radians(80)), height=(0.0, 0.10)
     )
     """Where goals are drawn."""
+
+    def _check_feasible(self) -> None:
+        goals = task_points(self.GOAL_REGION, self._obstacles)
+        if not goals.size:
+            self._refuse(f"the obstacles block every goal of {self.GOAL_REGION}")
+        if farthest_apart(goals, np.array([READY_TOOL_POSE[:3]])) <= self.distance_threshold:
+            self._refuse("no goal lies farther than distance_threshold from the start")
 
     def _sample_task(self) -> None:
         self._set_goal(self._draw_point(self.GOAL_REGION, READY_TOOL_POSE[:3]))

@@ -3,8 +3,9 @@
 A move between places is a joint path planned with :func:`lynxsim.plan.plan_segment`
 in the env's own scene (:attr:`~lynxsim.envs.base.LynxArmEnv.collision_checker`),
 first with the gripper pointing down all the way, then in the four joints the
-tool-space controller moves (:class:`Planner`); the path becomes a dense list of
-tool poses, each reachable within one action, dry-run through a copy of the
+tool-space controller moves, the wrist roll held where the command has it
+(:class:`Planner`); the path becomes a dense list of tool poses, each reachable
+within one action, dry-run through a copy of the
 controller (:class:`Route`); :class:`Mover` re-plans when the command strays or
 the destination moves. The experts (:mod:`lynxsim.envs.expert`) drive it.
 """
@@ -173,29 +174,36 @@ class Planner:
     A move is planned first with the gripper pointing down all the way (three
     free joints: the wrist pitch follows the shoulder and elbow), where start and
     goal point down, then, if that fails, in the four joints the tool-space
-    controller moves; the roll is held at :data:`GRIP_ROLL_RAD` and the tool
-    pitch kept within the controller's range. The result is dry-run through a
+    controller moves; the roll is held where the start has it
+    (:data:`GRIP_ROLL_RAD` unless a ``-v2`` action turned it) and the tool pitch
+    kept within the controller's range. The result is dry-run through a
     copy of the controller.
     """
 
     def __init__(self, env: LynxArmEnv, controller: ToolSpaceController) -> None:
         self._controller = controller
-        world = CheckerOracle(env.collision_checker)
+        self._world = CheckerOracle(env.collision_checker)
+        self._roll = GRIP_ROLL_RAD
+        self._spaces = self._subspaces(GRIP_ROLL_RAD)
+        self._lipschitz = arm_lipschitz()
+        self.reset()
+
+    def _subspaces(self, roll: float) -> tuple[_Subspace, _Subspace]:
+        """The two subspaces of the moves, with the wrist roll held at ``roll`` [rad]."""
+        world = self._world
         lower, upper = np.asarray(LYNX_ARM.q_min), np.asarray(LYNX_ARM.q_max)
         top_down = JointSubspace(
             world,
             [[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, -1, -1], [0, 0, 0]],
-            [0.0, 0.0, 0.0, TOP_DOWN_PITCH_RAD, GRIP_ROLL_RAD],
+            [0.0, 0.0, 0.0, TOP_DOWN_PITCH_RAD, roll],
             lower,
             upper,
         )
-        roll_held = JointSubspace.holding(world, [_ROLL_JOINT], [GRIP_ROLL_RAD], lower, upper)
-        self._spaces = (
+        roll_held = JointSubspace.holding(world, [_ROLL_JOINT], [roll], lower, upper)
+        return (
             _Subspace(top_down, lower[:3], upper[:3]),
             _Subspace(roll_held, lower[:4], upper[:4]),
         )
-        self._lipschitz = arm_lipschitz()
-        self.reset()
 
     def reset(self) -> None:
         """Restart the seeds (call at every episode start)."""
@@ -206,9 +214,15 @@ class Planner:
     ) -> Route | None:
         """A route from the commanded joints ``start`` to the joints ``goal`` (5 values [rad]).
 
+        The roll is held at the start's (:data:`GRIP_ROLL_RAD` unless the env's
+        action turns it); ``goal`` must have that roll.
+
         Returns None when no attempt gave a path the controller follows exactly.
         """
         ends = np.array([start, goal], dtype=float)
+        if start[_ROLL_JOINT] != self._roll:
+            self._roll = start[_ROLL_JOINT]
+            self._spaces = self._subspaces(self._roll)
         for sub in self._spaces:
             # Into the joint box: the controller's commands may stand a rounding error
             # beyond a limit (a pitch clipped to -pi/2 leaves the wrist 4e-8 rad past it).
@@ -300,7 +314,7 @@ class Mover:
         ):
             route = None
         if route is None:
-            _, goal = ik_nearest(*dest, GRIP_ROLL_RAD, self._q_ready)
+            _, goal = ik_nearest(*dest, float(q_cmd[_ROLL_JOINT]), self._q_ready)
             if goal is not None:
                 route = self._planner.route(tuple(q_cmd.tolist()), goal, grasped=grasped)
         self.route = route

@@ -65,12 +65,15 @@ class _Encoder:
         path: The MP4 to write.
         fps: Frame rate [1/s].
         log: File receiving ffmpeg's messages (read back when it fails).
+        exact: Keep the frames' size and full colour resolution (yuv444p), else
+            scale them up to whole macroblocks and halve the colour planes (yuv420p).
     """
 
-    def __init__(self, path: Path, fps: float, log: IO[bytes]) -> None:
+    def __init__(self, path: Path, fps: float, log: IO[bytes], exact: bool = False) -> None:
         self._path = path
         self._fps = fps
         self._log = log
+        self._exact = exact
         self._proc: subprocess.Popen[bytes] | None = None
         self._thread: threading.Thread | None = None
         self._todo: queue.SimpleQueue[Frame | None] = queue.SimpleQueue()
@@ -102,9 +105,10 @@ class _Encoder:
         cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-nostdin", "-loglevel", "error"]
         cmd += ["-f", "rawvideo", "-pix_fmt", "rgb24", "-s", f"{width}x{height}"]
         cmd += ["-r", str(Fraction(self._fps).limit_denominator()), "-i", "pipe:0", "-an"]
-        cmd += ["-c:v", "libx264", "-preset", _PRESET, "-crf", str(_CRF), "-pix_fmt", "yuv420p"]
+        pix_fmt = "yuv444p" if self._exact else "yuv420p"
+        cmd += ["-c:v", "libx264", "-preset", _PRESET, "-crf", str(_CRF), "-pix_fmt", pix_fmt]
         padded = [-(-side // _MACRO_BLOCK_PX) * _MACRO_BLOCK_PX for side in (width, height)]
-        if padded != [width, height]:
+        if not self._exact and padded != [width, height]:
             cmd += ["-vf", f"scale={padded[0]}:{padded[1]}"]
         cmd += ["-f", "mp4", str(self._path)]
         # A session of its own: Ctrl-C reaches lynxsim, which stops the encoder itself.
@@ -197,7 +201,9 @@ def decoded_frames(path: str | os.PathLike[str]) -> int:
 
 
 @contextlib.contextmanager
-def mp4_writer(dest: str | os.PathLike[str], fps: float) -> Iterator[FrameSink]:
+def mp4_writer(
+    dest: str | os.PathLike[str], fps: float, *, exact: bool = False
+) -> Iterator[FrameSink]:
     """Open an MP4 writer; the file appears at ``dest`` only when complete and decodable.
 
     Frames are encoded while the caller goes on (a writer thread feeds ffmpeg);
@@ -207,6 +213,11 @@ def mp4_writer(dest: str | os.PathLike[str], fps: float) -> Iterator[FrameSink]:
         dest: Output path ending in ``.mp4``.
         fps: Frames per second (video time is real time at this rate), in
             [:data:`~lynxsim.bounds.MIN_FPS`, :data:`~lynxsim.bounds.MAX_FPS`].
+        exact: For videos whose frames are data (datasets): keep each frame's
+            size (any) and full colour resolution (H.264 High 4:4:4, yuv444p;
+            decoders such as FFmpeg's read it, some players do not). Else (the
+            default, for watching) frames are scaled up to a multiple of 16 px
+            (whole macroblocks) and stored in yuv420p, as players expect.
 
     Raises:
         InvalidInputError: ``fps`` out of range, ``dest`` not an .mp4, or a frame
@@ -221,7 +232,7 @@ def mp4_writer(dest: str | os.PathLike[str], fps: float) -> Iterator[FrameSink]:
     fps = check_range(fps, "fps", MIN_FPS, MAX_FPS, "frames/s")
     check_destination(dest)
     with atomic_path(dest) as tmp, tempfile.TemporaryFile() as log:
-        encoder = _Encoder(tmp, fps, log)
+        encoder = _Encoder(tmp, fps, log, exact)
         try:
             yield encoder
             if encoder.frames == 0:

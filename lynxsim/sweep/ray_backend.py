@@ -10,20 +10,35 @@ local backend's where the workers run the same build of lynxsim and MuJoCo.
 
 On a cluster every node needs the same lynxsim, MuJoCo and Ray installed (a
 shared environment or image); only the task files travel, inside the sweep.
+An address (``HOST:PORT`` or Ray Client's ``ray://HOST:PORT``, which the
+``cluster`` extra installs) is tried first with a plain TCP connection that
+must answer within :attr:`RayBackend.connect_timeout_s`: nothing listening
+there is one clear error at once, not Ray retrying for minutes. Ray's own log
+lines stay off stderr unless :attr:`RayBackend.verbose`.
 """
 
 from __future__ import annotations
 
+import logging
+import os
+import socket
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from lynxsim.errors import LynxsimError
+from lynxsim.errors import InvalidInputError, LynxsimError
 from lynxsim.sweep.runner import Shard, ShardHook, compute_shard
 from lynxsim.sweep.spec import SweepSpec
 from lynxsim.sweep.table import Table
 
-__all__ = ["RayBackend", "RayUnavailableError", "require_ray"]
+__all__ = ["CONNECT_TIMEOUT_S", "RayBackend", "RayUnavailableError", "require_ray"]
+
+CONNECT_TIMEOUT_S = 10.0
+"""How long the address may take to accept a connection [s]."""
+
+_GCS_WAIT_S = "5"
+"""Ray's budget for reaching a cluster's GCS once its port answers [s] (its default is minutes)."""
 
 
 class RayUnavailableError(LynxsimError):
@@ -56,11 +71,16 @@ class RayBackend:
             local one.
         max_retries: How often Ray runs a shard again whose worker died.
         max_in_flight: Shards submitted at a time (0: all at once).
+        connect_timeout_s: How long the address may take to accept a TCP
+            connection [s].
+        verbose: Ray's own log lines on stderr (else only its errors).
     """
 
     address: str | None = None
     max_retries: int = 3
     max_in_flight: int = 0
+    connect_timeout_s: float = CONNECT_TIMEOUT_S
+    verbose: bool = False
 
     def run(
         self,
@@ -77,12 +97,21 @@ class RayBackend:
         ray = require_ray()
         started = False
         if not ray.is_initialized():
+            if self.address is not None:
+                _probe(self.address, self.connect_timeout_s)
+                os.environ.setdefault("RAY_gcs_server_port_wait_time_s", _GCS_WAIT_S)
             try:
-                ray.init(address=self.address, log_to_driver=False)
+                with warnings.catch_warnings():
+                    if not self.verbose:  # Ray Client warns before it fails
+                        warnings.simplefilter("ignore")
+                    ray.init(
+                        address=self.address,
+                        log_to_driver=self.verbose,
+                        logging_level=logging.INFO if self.verbose else logging.ERROR,
+                    )
             except (ConnectionError, RuntimeError, ValueError) as exc:
-                raise RayUnavailableError(
-                    f"cannot reach Ray at {self.address or 'a new local instance'}: {exc}"
-                ) from None
+                where = self.address or "a new local instance"
+                raise RayUnavailableError(f"cannot reach Ray at {where}: {exc}") from None
             started = True
         try:
             remote = ray.remote(num_cpus=1, max_retries=self.max_retries)(compute_shard)
@@ -109,3 +138,29 @@ class RayBackend:
         finally:
             if started:
                 ray.shutdown()
+
+
+def _probe(address: str, timeout_s: float) -> None:
+    """Check that ``address`` (``HOST:PORT`` or ``ray://HOST:PORT``) accepts a TCP connection.
+
+    ``auto`` and ``local`` are left to Ray (it finds or starts the instance itself).
+
+    Raises:
+        InvalidInputError: The address is not of that form.
+        RayUnavailableError: Nothing accepts a connection there within ``timeout_s``.
+    """
+    if address in ("auto", "local"):
+        return
+    host, _, port = address.removeprefix("ray://").rpartition(":")
+    host = host.strip("[]")
+    if not host or not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise InvalidInputError(
+            f"--address {address!r}: expected HOST:PORT, ray://HOST:PORT or auto"
+        )
+    try:
+        socket.create_connection((host, int(port)), timeout=timeout_s).close()
+    except OSError as exc:
+        why = exc.strerror or str(exc) or type(exc).__name__
+        raise RayUnavailableError(
+            f"cannot reach Ray at {address}: no answer within {timeout_s:g} s ({why})"
+        ) from None

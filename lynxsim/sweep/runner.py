@@ -18,8 +18,9 @@ whose path depends on where the obstacle stands, are planned and played row by
 row, and a sweep without an obstacle plays each row.
 
 :func:`run_sweep` saves each finished shard at once (atomically, under a name
-that includes the digest of the sweep file and its tasks), skips shards already
-saved, and assembles the table from the shards in order.
+that includes the digest of the sweep file and its tasks, each file carrying
+that digest, its index and a checksum: :mod:`lynxsim.sweep.shard_files`), skips
+shards already saved and verified, and assembles the table from the shards in order.
 """
 
 from __future__ import annotations
@@ -35,14 +36,16 @@ from typing import Protocol
 
 from lynxsim.bounds import MAX_JOBS
 from lynxsim.errors import InvalidInputError, LynxsimError
-from lynxsim.fileio import file_stem, safe_stem
+from lynxsim.fileio import file_stem
 from lynxsim.inputs import count
+from lynxsim.processes import pool_initializer
 from lynxsim.robots import get, motion, plan, restore, rows, simulation
 from lynxsim.scene import Box, Obstacle, Scene
 from lynxsim.sim.report import RunReport
 from lynxsim.sim.sweep_judge import PlacementJudge
+from lynxsim.sweep.shard_files import Notice, saved_shard, shard_folder, shard_path, write_shard
 from lynxsim.sweep.spec import SweepSpec
-from lynxsim.sweep.table import Table, concat, empty, read_npz, write_npz
+from lynxsim.sweep.table import Table, concat, empty, write_npz
 from lynxsim.tasks import Task
 from lynxsim.traj import TrajectoryKind
 from lynxsim.traj.motion import Motion
@@ -354,6 +357,9 @@ class Backend(Protocol):
 class LocalBackend:
     """Shards computed in this process (``jobs == 1``) or in a pool of worker processes.
 
+    The workers end when this process dies, even by SIGKILL
+    (:func:`lynxsim.processes.die_with_parent`).
+
     Attributes:
         jobs: Worker processes (1: none), an integer from 1 to :data:`lynxsim.bounds.MAX_JOBS`.
 
@@ -379,11 +385,13 @@ class LocalBackend:
                 done(shard, compute_shard(spec, shard, hook))
             return
         context = multiprocessing.get_context("spawn")  # no forked MuJoCo state
+        # Each worker dies with this process and knows the robots registered here.
+        initializer, initargs = pool_initializer(restore, rows())
         with ProcessPoolExecutor(
             max_workers=self.jobs,
             mp_context=context,
-            initializer=restore,  # each worker knows the robots registered here
-            initargs=(rows(),),
+            initializer=initializer,
+            initargs=initargs,
         ) as pool:
             pending: dict[Future[Table], Shard] = {}
             queue: Iterator[Shard] = iter(todo)
@@ -425,22 +433,6 @@ class SweepOutcome:
     reused: int
 
 
-def shard_folder(spec: SweepSpec, out: Path) -> Path:
-    """Where a sweep's shards are saved: ``out/STEM.shards/DIGEST``."""
-    return out / f"{safe_stem(spec.name, 'sweep')}.shards" / spec.digest[:16]
-
-
-def _saved(path: Path, rows: int) -> Table | None:
-    """A saved shard of that many rows, or None (missing or unreadable: computed again)."""
-    if not path.is_file():
-        return None
-    try:
-        table = read_npz(path)
-    except (LynxsimError, OSError):
-        return None
-    return table if len(table["task"]) == rows else None
-
-
 def run_sweep(
     spec: SweepSpec,
     out: str | os.PathLike[str],
@@ -448,8 +440,13 @@ def run_sweep(
     backend: Backend | None = None,
     progress: Callable[[int, int], None] | None = None,
     hook: ShardHook | None = None,
+    notice: Notice | None = None,
 ) -> SweepOutcome:
     """Run a sweep: compute the shards not saved yet, save each as it finishes, write the table.
+
+    A saved shard is used only after it is verified
+    (:func:`lynxsim.sweep.shard_files.read_shard`); one that cannot be used is
+    computed again and ``notice`` gets one line saying which and why.
 
     Args:
         spec: The sweep.
@@ -458,6 +455,7 @@ def run_sweep(
         backend: Where shards are computed (default: this process).
         progress: Called as ``progress(rows_done, rows_total)``.
         hook: Passed to :func:`compute_shard`.
+        notice: Called with one line per saved shard that could not be used.
 
     Returns:
         The :class:`SweepOutcome`.
@@ -472,7 +470,8 @@ def run_sweep(
     tables: dict[int, Table] = {}
     todo: list[Shard] = []
     for shard in every:
-        saved = _saved(folder / f"shard_{shard.index:06d}.npz", shard.rows)
+        path = shard_path(folder, shard.index)
+        saved = saved_shard(path, spec.digest, shard.index, shard.rows, notice)
         if saved is None:
             todo.append(shard)
         else:
@@ -483,7 +482,7 @@ def run_sweep(
 
     def done(shard: Shard, table: Table) -> None:
         nonlocal rows_done
-        write_npz(folder / f"shard_{shard.index:06d}.npz", table)
+        write_shard(shard_path(folder, shard.index), table, sweep=spec.digest, index=shard.index)
         tables[shard.index] = table
         rows_done += shard.rows
         if progress is not None:

@@ -38,6 +38,9 @@ from __future__ import annotations
 import csv
 import math
 import os
+import struct
+import zipfile
+import zlib
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -50,14 +53,30 @@ from lynxsim.verdicts import Verdict
 
 __all__ = [
     "COLUMNS",
+    "NPZ_READ_ERRORS",
     "VERDICTS",
     "Table",
     "concat",
     "empty",
+    "finish",
     "read_npz",
     "write_csv",
     "write_npz",
 ]
+
+NPZ_READ_ERRORS: tuple[type[Exception], ...] = (
+    OSError,
+    ValueError,
+    EOFError,
+    KeyError,
+    RuntimeError,
+    NotImplementedError,
+    OverflowError,
+    struct.error,
+    zipfile.BadZipFile,
+    zlib.error,
+)
+"""What reading a damaged NPZ file can raise (NumPy, :mod:`zipfile`, :mod:`zlib`)."""
 
 Table = dict[str, npt.NDArray[np.generic]]
 """Column name to column, every column of the same length."""
@@ -106,32 +125,46 @@ def empty(rows: int) -> Table:
     return out
 
 
-def _finish(table: Mapping[str, npt.NDArray[np.generic]]) -> Table:
-    """Columns in table order, strings as fixed-width Unicode (no pickled objects)."""
+def finish(table: Mapping[str, npt.NDArray[np.generic]]) -> Table:
+    """Columns in table order, strings as fixed-width Unicode (no pickled objects).
+
+    Raises:
+        InvalidInputError: A column is missing, not one-dimensional, of another
+            length than the others or not of its kind.
+    """
     missing = [name for name in COLUMNS if name not in table]
     if missing:
         raise InvalidInputError(f"table lacks columns: {', '.join(missing)}")
-    lengths = {len(table[name]) for name in COLUMNS}
+    columns = {name: np.asarray(table[name]) for name in COLUMNS}
+    flat = [name for name, column in columns.items() if column.ndim != 1]
+    if flat:
+        raise InvalidInputError(f"table columns not one-dimensional: {', '.join(flat)}")
+    lengths = {len(column) for column in columns.values()}
     if len(lengths) > 1:
         raise InvalidInputError(f"table columns differ in length: {sorted(lengths)}")
     out: Table = {}
     for name, kind in COLUMNS.items():
-        column = np.asarray(table[name])
-        out[name] = column.astype(str) if kind == "U" else column.astype(kind)
+        column = columns[name]
+        if kind != "U" and column.dtype.kind in "USO":
+            raise InvalidInputError(f"table column {name} holds text, not {kind} numbers")
+        try:
+            out[name] = column.astype(str) if kind == "U" else column.astype(kind)
+        except (ValueError, TypeError) as exc:
+            raise InvalidInputError(f"table column {name}: {exc}") from None
     return out
 
 
 def concat(tables: Sequence[Mapping[str, npt.NDArray[np.generic]]]) -> Table:
     """Rows of several tables, in order."""
     if not tables:
-        return _finish(empty(0))
-    finished = [_finish(t) for t in tables]
+        return finish(empty(0))
+    finished = [finish(t) for t in tables]
     return {name: np.concatenate([t[name] for t in finished]) for name in COLUMNS}
 
 
 def write_npz(dest: str | os.PathLike[str], table: Mapping[str, npt.NDArray[np.generic]]) -> Path:
     """Write the table as NPZ (one array per column), atomically."""
-    done = _finish(table)
+    done = finish(table)
     with atomic_path(dest) as tmp:
         np.savez_compressed(tmp, **done)  # type: ignore[arg-type]
     return Path(dest)
@@ -147,9 +180,14 @@ def read_npz(path: str | os.PathLike[str]) -> Table:
     try:
         with np.load(path, allow_pickle=False) as data:
             table = {name: data[name] for name in data.files}
-    except (ValueError, EOFError, KeyError) as exc:
+    except OSError:
+        raise
+    except NPZ_READ_ERRORS as exc:
+        raise InvalidInputError(f"{path}: not a sweep table ({type(exc).__name__})") from None
+    try:
+        return finish(table)
+    except InvalidInputError as exc:
         raise InvalidInputError(f"{path}: not a sweep table ({exc})") from None
-    return _finish(table)
 
 
 def _cell(value: object, kind: str) -> str:
@@ -169,7 +207,7 @@ def write_csv(dest: str | os.PathLike[str], table: Mapping[str, npt.NDArray[np.g
     Floats are written exactly (``repr``: they read back bit for bit); NaN and
     an undetermined ``healthy`` are empty cells.
     """
-    done = _finish(table)
+    done = finish(table)
     rows = len(done["task"])
     columns = [(name, kind, done[name].tolist()) for name, kind in COLUMNS.items()]
     with atomic_path(dest) as tmp, tmp.open("w", newline="", encoding="utf-8") as handle:

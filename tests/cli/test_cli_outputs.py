@@ -7,7 +7,6 @@ file; a full disk or SIGTERM leaves no partial file.
 from __future__ import annotations
 
 import os
-import resource
 import signal
 import subprocess
 import sys
@@ -17,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from lynxsim.sim.video import decoded_frames
-from tests.helpers import short_arm_task
+from tests.helpers import full_disk, short_arm_task
 
 
 def _task(folder: Path, name: str = "short", body: str | None = None) -> Path:
@@ -73,14 +72,6 @@ def test_out_must_be_an_mp4(cli, tmp_path):
     assert result.err == f"lynxsim: error: --out must name an .mp4 file, got {tmp_path / 'x.avi'}\n"
 
 
-def _full_disk(limit_bytes: int):
-    def limit() -> None:
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # EFBIG instead of death, like ENOSPC
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
-
-    return limit
-
-
 def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
     task = _task(tmp_path)
     dest = tmp_path / "clip.mp4"
@@ -89,7 +80,7 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
         [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
         capture_output=True,
         text=True,
-        preexec_fn=_full_disk(20_000),
+        preexec_fn=full_disk(20_000),
         timeout=300,
         env={**os.environ, "MUJOCO_GL": "egl"},
     )

@@ -52,6 +52,14 @@ def test_sweep_writes_table_and_maps_inside_the_folder(cli, small, tmp_path):
     assert again.code == 0, again.err
     assert "(0 shards computed, 1 reused)" in again.out
     assert "obstacle_avoidance   line" in again.out
+    (shard,) = out.glob("escape_small.shards/*/shard_000000.npz")
+    shard.write_bytes(shard.read_bytes()[:-40])  # truncated
+    damaged = cli("sweep", str(small), "--out-dir", str(out), "--no-maps", "--quiet")
+    assert damaged.code == 0, damaged.err
+    assert "(1 shards computed, 0 reused)" in damaged.out
+    (line,) = damaged.err.splitlines()
+    assert line.startswith("lynxsim: shard 0 (shard_000000.npz) unreadable")
+    assert line.endswith(": computed again")
 
 
 @pytest.mark.parametrize(
@@ -60,7 +68,7 @@ def test_sweep_writes_table_and_maps_inside_the_folder(cli, small, tmp_path):
         (["missing.toml"], 1, "No such file"),
         (["{small}", "--backend", "spark"], 2, "invalid choice"),
         (["{small}", "--jobs", "0"], 2, "must be between 1 and 256"),
-        (["{small}", "--address", "auto"], 1, "--address applies to --backend ray only"),
+        (["{small}", "--address", "auto"], 1, "--address and --verbose apply to --backend ray"),
     ],
     ids=["missing", "backend", "jobs", "address"],
 )

@@ -1,4 +1,4 @@
-"""Fixtures of the dataset tests: small datasets recorded once per module, in both formats."""
+"""Fixtures of the dataset tests: small datasets recorded once per module, in every format."""
 
 from __future__ import annotations
 
@@ -14,16 +14,21 @@ EPISODES = 3
 SEED = 7
 NOISE = 0.1
 
-FORMATS = [
-    "npz",
-    pytest.param(
-        "minari",
-        marks=pytest.mark.skipif(
-            importlib.util.find_spec("minari") is None, reason="needs the extra lynxsim[datasets]"
-        ),
+MINARI = pytest.param(
+    "minari",
+    marks=pytest.mark.skipif(
+        importlib.util.find_spec("minari") is None, reason="needs the extra lynxsim[datasets]"
     ),
-]
-"""Both formats; Minari's only where the optional extra is installed (CI installs it)."""
+)
+LEROBOT = pytest.param(
+    "lerobot",
+    marks=pytest.mark.skipif(
+        importlib.util.find_spec("pyarrow") is None, reason="needs the extra lynxsim[datasets]"
+    ),
+)
+FORMATS = ["npz", MINARI, LEROBOT]
+"""Every format; Minari's and LeRobot's only where the optional extra is installed (CI installs
+it)."""
 
 
 def record(root: Path, fmt: str, **kwargs: object) -> DatasetSummary:

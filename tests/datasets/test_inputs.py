@@ -31,7 +31,11 @@ FUZZ_EXAMPLES = 30
         ({"noise": "0.1"}, InvalidInputError, r"noise must be a number"),
         ({"env_id": "Nope-v0"}, InvalidInputError, r"env_id must be one of \['LynxPick"),
         ({"env_id": None}, InvalidInputError, r"env_id must be one of"),
-        ({"format": "hdf5"}, InvalidInputError, r"format must be one of \['npz', 'minari'\]"),
+        (
+            {"format": "hdf5"},
+            InvalidInputError,
+            r"format must be one of \['npz', 'minari', 'lerobot'\]",
+        ),
         ({"format": ["npz"]}, InvalidInputError, r"format must be one of"),
         ({"dataset_id": "../escaped-v0"}, InvalidInputError, r"dataset id must look like"),
         ({"dataset_id": 3}, InvalidInputError, r"dataset_id must be a string, got 3"),
@@ -110,7 +114,7 @@ def _mostly(valid: st.SearchStrategy, odd: st.SearchStrategy) -> st.SearchStrate
     episodes=_mostly(st.just(1), st.sampled_from([*_ODD, 1.0, 10**30])),
     noise=_mostly(st.floats(0.0, 1.0), st.one_of(st.floats(), st.sampled_from(_ODD))),
     seed=_mostly(st.integers(0, 2**63 - 1), st.one_of(st.integers(), st.sampled_from(_ODD))),
-    fmt=_mostly(st.sampled_from(["npz", "minari"]), st.sampled_from(["NPZ", "", *_ODD])),
+    fmt=_mostly(st.sampled_from(["npz", "minari", "lerobot"]), st.sampled_from(["NPZ", "", *_ODD])),
     dataset_id=_mostly(
         st.sampled_from([None, "a-v0", "b/c_d-v12"]),
         st.one_of(st.text(max_size=12), st.sampled_from(_ODD)),
@@ -118,9 +122,10 @@ def _mostly(valid: st.SearchStrategy, odd: st.SearchStrategy) -> st.SearchStrate
     env_id=_mostly(
         st.sampled_from(["LynxReach-v1", "LynxPickAndPlace-v1"]), st.sampled_from(["Lynx", *_ODD])
     ),
+    videos=_mostly(st.booleans(), st.sampled_from(_ODD)),
 )
 def test_fuzzed_calls_write_a_whole_dataset_or_raise_a_typed_error(
-    tmp_path_factory, episodes, noise, seed, fmt, dataset_id, env_id
+    tmp_path_factory, episodes, noise, seed, fmt, dataset_id, env_id, videos
 ):
     root: Path = tmp_path_factory.mktemp("fuzz")
     try:
@@ -132,11 +137,12 @@ def test_fuzzed_calls_write_a_whole_dataset_or_raise_a_typed_error(
             format=fmt,
             dataset_id=dataset_id,
             env_id=env_id,
+            videos=videos,
         )
     except LynxsimError:
         assert not [p for p in root.rglob("*") if p.is_file()]
     else:
         assert summary.path.is_relative_to(root)
         assert summary.episodes == 1
-        assert any(summary.path.rglob("metadata.json"))
+        assert any(summary.path.rglob("metadata.json")) or any(summary.path.rglob("info.json"))
     assert not list(root.rglob(".*"))  # no temporary folder left

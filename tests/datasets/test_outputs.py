@@ -61,11 +61,12 @@ def test_minari_missing_is_a_clear_error_and_writes_nothing(tmp_path, monkeypatc
     assert write_dataset(tmp_path, 1, format="npz").episodes == 1  # NPZ needs no extra
 
 
-def test_importing_the_package_loads_neither_mujoco_nor_minari():
+def test_importing_the_package_loads_neither_mujoco_nor_the_extras():
     code = (
         "import sys, lynxsim.datasets, lynxsim.datasets.layout, lynxsim.datasets.episode, "
-        "lynxsim.datasets.npz, lynxsim.datasets.minari_writer, lynxsim.cli.dataset; "
-        "print(sorted({'mujoco', 'minari', 'h5py'} & set(sys.modules)))"
+        "lynxsim.datasets.npz, lynxsim.datasets.minari_writer, lynxsim.datasets.lerobot_writer, "
+        "lynxsim.datasets.lerobot_check, lynxsim.cli.dataset; "
+        "print(sorted({'mujoco', 'minari', 'h5py', 'pyarrow'} & set(sys.modules)))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout == "[]\n"

@@ -111,6 +111,9 @@ class ModelRandomizer:
         self._act, self._dofs, self._geom = actuators, dofs, cube_geom
         self._cube = cube
         self._nominal = self._read()
+        adr, num = int(model.body_bvhadr[0]), int(model.body_bvhnum[0])
+        self._world_bvh = slice(max(adr, 0), max(adr, 0) + (num if adr >= 0 else 0))
+        self._world_aabb = model.bvh_aabb[self._world_bvh].copy()
         self._randomized = False
         self.domain = self._current()
         """The model's physical parameters now (a :class:`Domain`)."""
@@ -160,7 +163,9 @@ class ModelRandomizer:
         ``r`` None restores the nominal model (touching nothing when nothing was
         randomised, so the random stream is untouched). Runs ``mj_setConst``, so
         the constants that depend on masses (``body_subtreemass``,
-        ``*_invweight0``, ``dof_M0``, ``actuator_acc0``) follow the cube.
+        ``*_invweight0``, ``dof_M0``, ``actuator_acc0``) and the cube's bounding
+        volumes follow the cube; the world body's, which it refits too, are put
+        back as compiled.
         """
         if r is None and not self._randomized:
             return self._cube
@@ -189,6 +194,12 @@ class ModelRandomizer:
                 m.body_inertia[b] = mass * size * size / 6.0  # a solid cube
             self._draw_servos_and_cameras(r, rng)
         mujoco.mj_setConst(m, self._data)
+        # mj_setConst also refits the bounding-volume hierarchies to the geoms as they
+        # stand: the world's to the obstacle slots of the last episode (parked, or
+        # where it put them). Its compiled boxes cover every place a slot may take;
+        # keep them, or the next episode would depend on the last one (and miss
+        # contacts). The cube's follows its new size.
+        m.bvh_aabb[self._world_bvh] = self._world_aabb
         self._randomized = r is not None
         self.domain = self._current()
         return cube

@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mujoco
 
@@ -105,12 +105,18 @@ class ObstacleSlots:
         geoms: Slot geom ids of each shape, in slot order.
         material: Material id of the slots (restored when a slot is used).
         rgba: Compiled colour of the slots (restored when a slot is used).
+        sizes: Compiled ``geom_size``, ``geom_aabb`` and ``geom_rbound`` of every
+            slot, by geom id (restored when a slot is parked, so that a parked
+            slot does not keep the last obstacle's size).
     """
 
     model: mujoco.MjModel
     geoms: dict[type[Obstacle], tuple[int, ...]]
     material: int
     rgba: tuple[float, float, float, float]
+    sizes: dict[int, tuple[tuple[float, ...], tuple[float, ...], float]] = field(
+        default_factory=dict
+    )
 
     @classmethod
     def from_model(cls, model: mujoco.MjModel) -> ObstacleSlots:
@@ -129,7 +135,16 @@ class ObstacleSlots:
         if first is None:
             return cls(model, geoms, -1, (0.0, 0.0, 0.0, 0.0))
         red, green, blue, alpha = (float(v) for v in model.geom_rgba[first])
-        return cls(model, geoms, int(model.geom_matid[first]), (red, green, blue, alpha))
+        sizes = {
+            g: (
+                tuple(model.geom_size[g].tolist()),
+                tuple(model.geom_aabb[g].tolist()),
+                float(model.geom_rbound[g]),
+            )
+            for ids in geoms.values()
+            for g in ids
+        }
+        return cls(model, geoms, int(model.geom_matid[first]), (red, green, blue, alpha), sizes)
 
     @property
     def per_shape(self) -> int:
@@ -172,6 +187,11 @@ class ObstacleSlots:
             m.geom_rgba[g] = self.rgba
         for shape, slots in self.geoms.items():
             for g in slots[used[shape] :]:
+                if g in self.sizes:
+                    size, aabb, rbound = self.sizes[g]
+                    m.geom_size[g] = size
+                    m.geom_aabb[g] = aabb
+                    m.geom_rbound[g] = rbound
                 m.geom_pos[g] = PARK_POSITION_M
                 m.geom_quat[g] = (1.0, 0.0, 0.0, 0.0)
                 m.geom_matid[g] = -1

@@ -1,0 +1,35 @@
+"""A dataset on a full disk: one line, exit 1, and nothing left behind, in every format."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from tests.datasets.conftest import FORMATS
+from tests.helpers import full_disk
+
+
+@pytest.mark.parametrize("limit_bytes", [2_000, 200_000], ids=["at-once", "midway"])
+@pytest.mark.parametrize("fmt", FORMATS)
+def test_a_full_disk_is_one_line_and_leaves_no_partial_dataset(tmp_path, fmt, limit_bytes):
+    out = tmp_path / "datasets"
+    proc = subprocess.run(
+        [
+            sys.executable, "-m", "lynxsim", "dataset", "--format", fmt, "--episodes", "3",
+            "--out-dir", str(out), "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(limit_bytes),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )  # fmt: skip
+    assert proc.returncode == 1, proc.stderr
+    (line,) = proc.stderr.splitlines()
+    assert line.startswith("lynxsim: error: "), line
+    assert "Traceback" not in proc.stderr
+    assert [p for p in out.rglob("*") if not p.is_dir()] == []
+    assert [p for p in out.rglob("*") if ".tmp" in p.name] == []
