@@ -168,8 +168,8 @@ def write_dataset(
     env = make_env(env_id, **pixels)
     spec = env.spec if env.spec is not None else gym.spec(env_id)
     try:
-        if fmt is DatasetFormat.LEROBOT:
-            LeRobotLayout.of_env(env, videos)  # refuses what it cannot store, before any write
+        # LeRobot's features, made before any write (it refuses what it cannot store)
+        layout = LeRobotLayout.of_env(env, videos) if fmt is DatasetFormat.LEROBOT else None
         std = action_noise_std(env.action_space, noise)
         policy = make_policy("expert", env)
         description = (
@@ -180,7 +180,7 @@ def write_dataset(
         steps = successes = collisions = 0
         with (
             atomic_folder(dest, NEW_FOLDER_HINT) as tmp,
-            _writer(fmt, tmp, env, dataset_id, description, videos) as w,
+            _writer(fmt, tmp, env, dataset_id, description, layout) as w,
         ):
             for i in range(episodes):
                 episode = record_episode(env, policy, seed + i, std, noise_generator(seed + i))
@@ -208,12 +208,12 @@ def _writer(
     env: gym.Env[Any, Any],
     dataset_id: str,
     description: str,
-    videos: bool,
+    layout: LeRobotLayout | None,
 ) -> _Writer:
     if fmt is DatasetFormat.NPZ:
         return NpzWriter(folder)
-    if fmt is DatasetFormat.LEROBOT:
-        return LeRobotWriter(folder, env, videos)
+    if layout is not None:
+        return LeRobotWriter(folder, layout)
     return MinariWriter(folder, env, dataset_id, description)
 
 
