@@ -92,6 +92,22 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "task.toml"]
 
 
+def test_full_disk_leaves_no_empty_folder(tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "new" / "deeper" / "clip.mp4"
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(20_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["task.toml"]
+
+
 def test_sigterm_removes_partial_outputs(tmp_path):
     body = short_arm_task().replace("segment_duration_s = 1.0", "segment_duration_s = 60.0")
     task = _task(tmp_path, body=body)
@@ -205,3 +221,21 @@ def test_a_wrong_out_is_refused_before_any_work(cli, tmp_path, argv):
     assert result.code == 1
     assert result.err == f"lynxsim: error: will not replace {folder}: it is a folder\n"
     assert result.out == ""
+
+
+def test_play_never_replaces_a_json_file_that_is_not_its_report(cli, tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "clip.mp4"
+    first = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert first.code == 0, first.err
+    again = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert again.code == 0, again.err  # its own report from before is replaced
+    mine = dest.with_suffix(".json")
+    mine.write_text('{"notes": "my own file"}\n')
+    result = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert result.code == 1
+    assert result.err == (
+        f"lynxsim: error: will not replace {mine}: it is not a lynxsim run report "
+        f"(the report of {dest} goes there; move it or choose another --out)\n"
+    )
+    assert mine.read_text() == '{"notes": "my own file"}\n'

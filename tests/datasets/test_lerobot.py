@@ -291,3 +291,44 @@ def test_the_printed_command_names_the_loading_script(tmp_path):
         lines[3] == f"  load with        python examples/load_lerobot.py {folder}  (needs lerobot)"
     )
     validate(folder)
+
+
+@pytest.mark.parametrize(
+    ("file_bytes", "raw_video_bytes", "files"),
+    [
+        (20_000, 10**9, [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0)]),  # data files of one episode
+        (10**9, 160_000, [(0, 0), (0, 0), (0, 1), (0, 1), (1, 0)]),  # videos of two
+    ],
+    ids=["data-limit", "video-limit"],
+)
+def test_files_and_chunks_roll_over_at_the_limits(tmp_path, file_bytes, raw_video_bytes, files):
+    from dataclasses import replace
+
+    from lynxsim.datasets import action_noise_std, noise_generator, record_episode
+    from lynxsim.datasets.lerobot_meta import LeRobotLayout
+    from lynxsim.datasets.lerobot_writer import LeRobotWriter
+    from lynxsim.envs.evaluation import make_policy
+
+    env = gym.make("LynxReach-v1", pixels=("front",), pixel_width=16, pixel_height=16)
+    layout = replace(
+        LeRobotLayout.of_env(env, videos=True),
+        chunks_size=2,
+        file_bytes=file_bytes,
+        raw_video_bytes=raw_video_bytes,
+    )
+    policy, std = make_policy("expert", env), action_noise_std(env.action_space, NOISE)
+    folder = tmp_path / "dataset"
+    folder.mkdir()
+    with LeRobotWriter(folder, layout) as writer:
+        for seed in range(SEED, SEED + len(files)):
+            writer.add(record_episode(env, policy, seed, std, noise_generator(seed)))
+        writer.finish({"first_seed": SEED})
+    env.close()
+    dataset = validate(folder)  # every file, index, video time and frame count
+    e = {k: dataset.episodes.column(k).to_pylist() for k in dataset.episodes.column_names}
+    key = "videos/observation.images.front"
+    assert list(zip(e["data/chunk_index"], e["data/file_index"], strict=True)) == files
+    assert list(zip(e[f"{key}/chunk_index"], e[f"{key}/file_index"], strict=True)) == files
+    assert dataset.info["chunks_size"] == 2
+    meta_files = sorted((folder / "meta/episodes").rglob("*.parquet"))
+    assert (len(meta_files) > 1) == (file_bytes < 10**9)  # a row's stats take ~10 kB
