@@ -4,18 +4,17 @@ from __future__ import annotations
 
 import json
 import os
-import resource
-import signal
 import subprocess
 import sys
 
-import gymnasium as gym
 import numpy as np
 import pytest
 
 from lynxsim.datasets import MissingExtraError, read_npz, write_dataset
+from lynxsim.envs.registration import make_env
 from lynxsim.errors import InvalidInputError, InvalidTypeError, LynxsimError
 from tests.datasets.conftest import NOISE, SEED, record
+from tests.helpers import full_disk
 
 pytest.importorskip("pyarrow")  # the extra lynxsim[datasets] (CI installs it)
 
@@ -67,7 +66,7 @@ def test_a_fifty_episode_dataset_has_lerobots_documented_layout(fifty):
     dataset = validate(summary.path)
     assert dataset.info["total_episodes"] == SCHEMA_EPISODES == summary.episodes
     assert dataset.info["total_frames"] == sum(e.steps for e in episodes) == summary.steps
-    assert dataset.info["fps"] == gym.make("LynxPickAndPlace-v1").metadata["render_fps"]
+    assert dataset.info["fps"] == make_env("LynxPickAndPlace-v1").metadata["render_fps"]
     assert dataset.info["video_path"] is None
     assert sorted(p.name for p in (summary.path / "meta").iterdir()) == [
         "episodes",
@@ -242,30 +241,21 @@ def test_the_check_finds_a_truncated_video_and_a_missing_episode(tmp_path):
         check_lerobot(summary.path)
 
 
-def _full_disk(limit_bytes: int):
-    def limit() -> None:
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # EFBIG instead of death, like ENOSPC
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
-
-    return limit
-
-
 @pytest.mark.parametrize(
     ("argv", "limit_bytes"),
-    [
-        ([], 20_000),  # the data file
+    [  # state only: tests/datasets/test_full_disk.py
         (["--images", "--image-size", "32"], 20_000),  # the video (ffmpeg inherits the limit)
         (["--images", "--image-size", "32", "--no-videos"], 20_000),  # PNG in the data file
     ],
-    ids=["state", "video", "png"],
+    ids=["video", "png"],
 )
-def test_a_full_disk_is_one_line_and_leaves_no_dataset(tmp_path, argv, limit_bytes):
+def test_a_full_disk_with_images_is_one_line_and_leaves_no_dataset(tmp_path, argv, limit_bytes):
     cmd = [sys.executable, "-m", "lynxsim", "dataset", "--format", "lerobot", "--episodes", "3"]
     proc = subprocess.run(
         [*cmd, *argv, "--out-dir", str(tmp_path), "--quiet"],
         capture_output=True,
         text=True,
-        preexec_fn=_full_disk(limit_bytes),
+        preexec_fn=full_disk(limit_bytes),
         timeout=300,
         env={**os.environ, "MUJOCO_GL": "egl"},
     )
@@ -309,7 +299,7 @@ def test_files_and_chunks_roll_over_at_the_limits(tmp_path, file_bytes, raw_vide
     from lynxsim.datasets.lerobot_writer import LeRobotWriter
     from lynxsim.envs.evaluation import make_policy
 
-    env = gym.make("LynxReach-v1", pixels=("front",), pixel_width=16, pixel_height=16)
+    env = make_env("LynxReach-v1", pixels=("front",), pixel_width=16, pixel_height=16)
     layout = replace(
         LeRobotLayout.of_env(env, videos=True),
         chunks_size=2,
