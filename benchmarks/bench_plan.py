@@ -1,7 +1,8 @@
 """Planning blocked segments: compiled RRT-Connect on the cover, OMPL on the exact checker, field.
 
 Run: ``python benchmarks/bench_plan.py [--scenes 1000] [--dense 200] [--seed 0] [--jobs 2]
-[--planners compiled RRTConnect potential RRTConnect@cover]`` (a subset: a quicker run).
+[--every N] [--no-compile-time] [--planners compiled RRTConnect potential RRTConnect@cover]``
+(a subset of planners, or the others on every N-th scene only: a quicker run).
 
 Each scene has 1-3 random obstacles (``--scenes`` of them) or 10 (``--dense``;
 cylinders, boxes, spheres; no cube) and a start and goal tool pose (random
@@ -156,8 +157,9 @@ def _plan(name: str, q0: np.ndarray, q1: np.ndarray, exact: Any, cover: Any, see
     )  # fmt: skip
 
 
-def _run(args: tuple[int, int, bool, tuple[str, ...]]) -> SceneResult:
-    index, seed, dense, planners = args
+def _run(args: tuple[int, int, bool, tuple[str, ...], int]) -> SceneResult:
+    index, seed, dense, all_planners, every = args
+    planners = tuple(p for p in all_planners if p == "compiled" or index % every == 0)
     model, checker, oracle, q0, q1 = _scene(index, seed, dense)
     started = time.perf_counter()
     cover = cover_oracle(checker)  # the scene's cover, built once per scene
@@ -255,10 +257,16 @@ def _report(results: list[SceneResult], planners: tuple[str, ...], what: str) ->
     print(f"{'':17s} {'':>7s} {'':>8s} {'med [ms]':>9s} {'[ms]':>8s} {'med [ms]':>9s} "
           f"{'[ms]':>8s} {'median':>8s} {'':>8s} {'ratio':>6s}")  # fmt: skip
     for name in planners:
-        got = [r.outcomes[name] for r in results if r.outcomes[name].solved]
-        in_solvable = sum(r.outcomes[name].solved for r in solvable)
-        print(_row(name, got, len(results), len(solvable), in_solvable))
-    base = [r for r in results if all(r.outcomes[p].solved for p in ("compiled", "RRTConnect"))]
+        ran = [r for r in results if name in r.outcomes]
+        got = [r.outcomes[name] for r in ran if r.outcomes[name].solved]
+        mine = [r for r in solvable if name in r.outcomes]
+        in_solvable = sum(r.outcomes[name].solved for r in mine)
+        print(_row(name, got, len(ran), len(mine), in_solvable))
+    base = [
+        r
+        for r in results
+        if all(p in r.outcomes and r.outcomes[p].solved for p in ("compiled", "RRTConnect"))
+    ]
     if base and "RRTConnect" in planners:
         a = np.median([r.outcomes["RRTConnect"].search_s for r in base])
         b = np.median([r.outcomes["compiled"].search_s for r in base])
@@ -267,11 +275,14 @@ def _report(results: list[SceneResult], planners: tuple[str, ...], what: str) ->
         print(f"compiled vs OMPL RRT-Connect on the exact checker, same {len(base)} scenes: "
               f"search + shortening median {a / b:.0f}x faster, "
               f"whole plan call {wa / wb:.1f}x")  # fmt: skip
-    fell = sum(r.outcomes["compiled"].fallback for r in results if "compiled" in r.outcomes)
+    fell = sum(r.outcomes["compiled"].fallback for r in results)
     build = np.median([r.build_s for r in results]) * 1e3
     print(f"compiled: {fell} segments fell back to OMPL on the exact checker (cover too tight); "
           f"cover build median {build:.1f} ms per scene")  # fmt: skip
     played = [r for r in results if not math.isnan(r.physics_clearance_m)]
+    unplayed = [r for r in results if "compiled" in r.outcomes and r.outcomes["compiled"].solved
+                and math.isnan(r.physics_clearance_m)]  # fmt: skip
+    assert not unplayed
     if played:
         low = [r for r in played
                if r.physics_clearance_m < DEFAULT_MARGIN_M - TRACKING_ALLOWANCE_M]  # fmt: skip
@@ -298,14 +309,25 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--planners", nargs="+", choices=PLANNERS, default=list(PLANNERS))
+    parser.add_argument(
+        "--every",
+        type=int,
+        default=1,
+        help="the planners other than compiled plan every N-th scene",
+    )
+    parser.add_argument(
+        "--no-compile-time",
+        action="store_true",
+        help="skip measuring the first call with an empty numba cache",
+    )
     args = parser.parse_args()
     planners = tuple(args.planners)
     if "compiled" not in planners:
         parser.error("--planners must include compiled")
     load_before = os.getloadavg()
-    first, second = _compile_time()
-    jobs = [(i, args.seed, False, planners) for i in range(args.scenes)]
-    jobs += [(i, args.seed, True, planners) for i in range(args.dense)]
+    first, second = (math.nan, math.nan) if args.no_compile_time else _compile_time()
+    jobs = [(i, args.seed, False, planners, args.every) for i in range(args.scenes)]
+    jobs += [(i, args.seed, True, planners, args.every) for i in range(args.dense)]
     wall, cpu = time.perf_counter(), time.process_time()
     with multiprocessing.get_context("spawn").Pool(args.jobs, initializer=_warm) as pool:
         results = list(
@@ -325,7 +347,7 @@ def main() -> None:
         _report([r for r in results if r.dense], planners, "10 obstacles")
     print("\nwall and CPU time of all planning per planner (sum over scenes, worker processes):")
     for name in planners:
-        got = [r.outcomes[name] for r in results if r.outcomes[name].solved]
+        got = [r.outcomes[name] for r in results if name in r.outcomes and r.outcomes[name].solved]
         print(f"  {name:17s} wall {sum(o.whole_s for o in got):8.1f} s, "
               f"CPU {sum(o.cpu_s for o in got):8.1f} s over {len(got)} solved")  # fmt: skip
     print(f"whole run: wall {wall:.0f} s")

@@ -12,6 +12,7 @@ symbolic link). :func:`atomic_folder` does the same for a folder written whole
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import os
 import re
@@ -130,6 +131,10 @@ def check_destination(dest: str | os.PathLike[str]) -> Path:
     return dest
 
 
+_WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EFBIG, errno.EDQUOT, errno.EIO, errno.EROFS})
+"""Errors of a write that :func:`atomic_path` reports as its destination's."""
+
+
 def _make_folders(folder: Path) -> list[Path]:
     """Create ``folder`` and its missing parents; the ones created, outermost first."""
     missing = []
@@ -160,7 +165,9 @@ def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
     folders made for it (if still empty); ``dest`` is left as it was.
 
     Raises:
-        OutputPathError: See :func:`check_destination`.
+        OutputPathError: See :func:`check_destination`; also a write that
+            failed for want of space or of a writable disk (``cannot write DEST:
+            No space left on device``), named after ``dest``, not its temporary name.
     """
     dest = check_destination(dest)
     made = _make_folders(dest.parent)
@@ -181,6 +188,12 @@ def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
         tmp.chmod(0o666 & ~umask)
         check_destination(dest)  # it may have changed while we wrote
         os.replace(tmp, dest)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        _remove_made(made)
+        if exc.errno in _WRITE_ERRNOS:  # named after dest: the temporary name is ours
+            raise OutputPathError(f"cannot write {dest}: {os.strerror(exc.errno)}") from None
+        raise
     except BaseException:
         tmp.unlink(missing_ok=True)
         _remove_made(made)

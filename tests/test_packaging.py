@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import subprocess
 import tomllib
 from pathlib import Path
 
@@ -72,3 +73,20 @@ def test_every_name_in_all_resolves(module):
 
 def test_version_is_set():
     assert lynxsim.__version__
+
+
+def test_what_the_suite_writes_is_not_tracked():
+    # MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder; the suite
+    # provokes some, and a tracked log would change with every run.
+    tracked = subprocess.run(
+        ["git", "ls-files", "MUJOCO_LOG.TXT", "videos/*.json", "videos/*.npz"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert tracked == ""
+    ignored = subprocess.run(
+        ["git", "check-ignore", "MUJOCO_LOG.TXT"], cwd=ROOT, capture_output=True, text=True
+    )
+    assert ignored.returncode == 0, "MUJOCO_LOG.TXT is not ignored"

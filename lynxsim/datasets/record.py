@@ -161,6 +161,10 @@ def write_dataset(
         raise InvalidTypeError(f"videos must be True or False, got {short(videos)}")
     if isinstance(images, str):
         images = (images,)
+    if not isinstance(images, Sequence) or not all(isinstance(c, str) for c in images):
+        raise InvalidTypeError(
+            f"images must be camera names (a string or a sequence of strings), got {short(images)}"
+        )
     image_size = check_count(image_size, "image_size", 16, 512)
     pixels: dict[str, Any] = {}
     if images:

@@ -88,8 +88,38 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
     assert proc.stderr.count("\n") == 1, proc.stderr
     assert proc.stderr.startswith("lynxsim: error: "), proc.stderr
     assert "Traceback" not in proc.stderr
+    assert proc.stderr.startswith(f"lynxsim: error: {task}: cannot write {dest}: "), proc.stderr
+    assert ".tmp" not in proc.stderr  # the temporary name is no concern of the user's
+    assert "@ 0x" not in proc.stderr  # nor ffmpeg's internals
+    assert "exit -" not in proc.stderr
     assert dest.read_bytes() == b"the previous video"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "task.toml"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "written"),
+    [
+        (["traj", "{task}", "--out-dir", "{tmp}/plots", "--no-compare"], "{tmp}/plots/short_"),
+        (["workspace", "--out", "{tmp}/ws.png", "--samples", "2000", "--quiet"], "{tmp}/ws.png"),
+    ],
+    ids=["traj", "workspace"],
+)
+def test_a_full_disk_names_the_file_not_its_temporary_name(tmp_path, argv, written):
+    task = _task(tmp_path)
+    argv = [a.format(task=task, tmp=tmp_path) for a in argv]
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", *argv],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(2_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    (line,) = proc.stderr.splitlines()
+    assert line.startswith(f"lynxsim: error: cannot write {written.format(tmp=tmp_path)}"), line
+    assert line.endswith(": File too large"), line
+    assert ".tmp" not in line
 
 
 def test_full_disk_leaves_no_empty_folder(tmp_path):
