@@ -12,6 +12,7 @@ symbolic link). :func:`atomic_folder` does the same for a folder written whole
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import os
 import re
@@ -130,23 +131,53 @@ def check_destination(dest: str | os.PathLike[str]) -> Path:
     return dest
 
 
+_WRITE_ERRNOS = frozenset({errno.ENOSPC, errno.EFBIG, errno.EDQUOT, errno.EIO, errno.EROFS})
+"""Errors of a write that :func:`atomic_path` reports as its destination's."""
+
+
+def _make_folders(folder: Path) -> list[Path]:
+    """Create ``folder`` and its missing parents; the ones created, outermost first."""
+    missing = []
+    for part in (folder, *folder.parents):
+        if os.path.lexists(part):
+            break
+        missing.append(part)
+    folder.mkdir(parents=True, exist_ok=True)
+    return missing[::-1]
+
+
+def _remove_made(made: list[Path]) -> None:
+    """Remove the folders :func:`_make_folders` created, innermost first, where still empty."""
+    for folder in reversed(made):
+        try:
+            folder.rmdir()
+        except OSError:  # something else was written there meanwhile: it stays
+            return
+
+
 @contextlib.contextmanager
 def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path beside ``dest``; rename it to ``dest`` on success.
 
     The temporary name keeps ``dest``'s suffix (writers such as matplotlib and
     imageio pick the format from it). On any exception (``KeyboardInterrupt``
-    and the CLI's SIGTERM included) the partial file is removed and ``dest`` is
-    left as it was.
+    and the CLI's SIGTERM included) the partial file is removed, and so are the
+    folders made for it (if still empty); ``dest`` is left as it was.
 
     Raises:
-        OutputPathError: See :func:`check_destination`.
+        OutputPathError: See :func:`check_destination`; also a write that
+            failed for want of space or of a writable disk (``cannot write DEST:
+            No space left on device``), named after ``dest``, not its temporary name.
     """
     dest = check_destination(dest)
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    fd, name = tempfile.mkstemp(
-        prefix=f".{dest.stem[:MAX_STEM]}.", suffix=f".tmp{dest.suffix}", dir=dest.parent
-    )
+    made = _make_folders(dest.parent)
+    try:
+        fd, name = tempfile.mkstemp(
+            prefix=f".{dest.stem[:MAX_STEM]}.", suffix=f".tmp{dest.suffix}", dir=dest.parent
+        )
+    except BaseException:
+        _remove_made(made)
+        raise
     os.close(fd)
     tmp = Path(name)
     try:
@@ -157,8 +188,15 @@ def atomic_path(dest: str | os.PathLike[str]) -> Iterator[Path]:
         tmp.chmod(0o666 & ~umask)
         check_destination(dest)  # it may have changed while we wrote
         os.replace(tmp, dest)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        _remove_made(made)
+        if exc.errno in _WRITE_ERRNOS:  # named after dest: the temporary name is ours
+            raise OutputPathError(f"cannot write {dest}: {os.strerror(exc.errno)}") from None
+        raise
     except BaseException:
         tmp.unlink(missing_ok=True)
+        _remove_made(made)
         raise
 
 
@@ -190,15 +228,20 @@ def atomic_folder(dest: str | os.PathLike[str], hint: str = "remove it") -> Iter
     """Yield a new temporary folder beside ``dest``; rename it to ``dest`` on success.
 
     On any exception (``KeyboardInterrupt`` and the CLI's SIGTERM included) the
-    temporary folder and everything in it are removed, and ``dest`` never appears.
+    temporary folder and everything in it are removed, and so are the folders
+    made for it (if still empty); ``dest`` never appears.
 
     Raises:
         OutputPathError: ``dest`` exists (checked before and again just before
             the rename), or a part of its path is not a folder.
     """
     dest = check_new_folder(dest, hint)
-    dest.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
+    made = _make_folders(dest.parent)
+    try:
+        tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.", suffix=".tmp", dir=dest.parent))
+    except BaseException:
+        _remove_made(made)
+        raise
     try:
         yield tmp
         # mkdtemp creates the folder private (0700); give it the usual permissions.
@@ -210,4 +253,5 @@ def atomic_folder(dest: str | os.PathLike[str], hint: str = "remove it") -> Iter
         os.rename(tmp, dest)
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
+        _remove_made(made)
         raise

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import subprocess
 import tomllib
 from pathlib import Path
 
@@ -23,7 +24,15 @@ def test_every_subpackage_is_listed_in_pyproject():
     found = {
         ".".join(p.relative_to(ROOT).parent.parts) for p in (ROOT / "lynxsim").rglob("__init__.py")
     }
-    assert found == set(SETUPTOOLS["packages"])
+    # Folders of package data only (the models' MJCF files, the web pages' assets) are
+    # listed too: setuptools warns at install that they are importable but not listed.
+    data = {
+        ".".join(p.relative_to(ROOT).parts)
+        for p in (ROOT / "lynxsim").rglob("*")
+        if p.is_dir() and p.name != "__pycache__" and not (p / "__init__.py").exists()
+    }
+    assert data
+    assert found | data == set(SETUPTOOLS["packages"])
     assert "package-dir" not in SETUPTOOLS  # every package lives in its own folder
 
 
@@ -64,3 +73,20 @@ def test_every_name_in_all_resolves(module):
 
 def test_version_is_set():
     assert lynxsim.__version__
+
+
+def test_what_the_suite_writes_is_not_tracked():
+    # MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder; the suite
+    # provokes some, and a tracked log would change with every run.
+    tracked = subprocess.run(
+        ["git", "ls-files", "MUJOCO_LOG.TXT", "videos/*.json", "videos/*.npz"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert tracked == ""
+    ignored = subprocess.run(
+        ["git", "check-ignore", "MUJOCO_LOG.TXT"], cwd=ROOT, capture_output=True, text=True
+    )
+    assert ignored.returncode == 0, "MUJOCO_LOG.TXT is not ignored"

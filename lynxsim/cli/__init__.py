@@ -4,121 +4,82 @@ Each sub-command lives in its own module exposing ``register(subparsers)``;
 the handler it sets returns the process exit code. Errors the user can cause
 (any :class:`~lynxsim.errors.LynxsimError`, bad files) print one line on
 stderr and exit non-zero, never a traceback.
+
+This module imports nothing but :mod:`os`, :mod:`signal` and :mod:`sys`
+(loaded with the interpreter): :func:`run`, the entry point, handles Ctrl-C
+and SIGTERM from its first instruction, before the parser and the
+sub-commands (:mod:`lynxsim.cli.program`) are imported.
 """
 
 from __future__ import annotations
 
-import argparse
 import os
 import signal
 import sys
-import threading
-from collections.abc import Sequence
-from types import FrameType
-from typing import Any, NoReturn
+from typing import TYPE_CHECKING, NoReturn
 
-from lynxsim.cli import arm, dataset, demo, env, plan, play, real, rrr, sweep, traj, view
-from lynxsim.errors import LynxsimError
+if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Sequence
+    from types import FrameType
 
-__all__ = ["build_parser", "main", "run"]
+__all__ = ["Terminated", "build_parser", "main", "on_sigterm", "run"]
 
-EXIT_USAGE = 2
-EXIT_ERROR = 1
-
-
-def _is_float_literal(text: str) -> bool:
-    """Whether ``float()`` reads ``text`` (``-9e1``, ``-.5``, ``-1.5E+2``, ``-inf``, ``nan``)."""
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+_EXIT_INTERRUPTED = 130
+_EXIT_TERMINATED = 128 + signal.SIGTERM
 
 
-class _OneLineParser(argparse.ArgumentParser):
-    """Argument parser whose errors are one line, not usage plus message.
-
-    Any negative float literal is read as a value, never as an option: plain
-    argparse takes ``-90`` and ``-.5`` for numbers but ``-9e1`` or ``-inf`` for
-    unknown options. Sub-parsers are of this class too (``parser_class``).
-    """
-
-    def error(self, message: str) -> NoReturn:
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {message}\n")
-
-    def _parse_optional(self, arg_string: str) -> Any:
-        if (
-            arg_string.startswith("-")
-            and arg_string not in self._option_string_actions
-            and _is_float_literal(arg_string)
-        ):
-            return None  # a positional value
-        return super()._parse_optional(arg_string)
-
-
-def build_parser() -> argparse.ArgumentParser:
-    """The full argument parser with every sub-command."""
-    parser = _OneLineParser(
-        prog="lynxsim",
-        description="Simulate the report's Lynxmotion arm and 3-RRR robot. "
-        "Lengths are in mm and angles in degrees at the command line unless a flag says otherwise.",
-    )
-    sub = parser.add_subparsers(required=True, parser_class=_OneLineParser)
-    for module in (arm, traj, plan, play, view, rrr, demo, env, dataset, sweep, real):
-        module.register(sub)
-    return parser
-
-
-class _Terminated(BaseException):
+class Terminated(BaseException):
     """SIGTERM arrived: unwinds like Ctrl-C, so that every partial output is removed."""
 
 
-def _on_sigterm(signum: int, frame: FrameType | None) -> NoReturn:
-    raise _Terminated
+def on_sigterm(signum: int, frame: FrameType | None) -> NoReturn:
+    """The SIGTERM handler: raises :class:`Terminated`."""
+    raise Terminated
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The full argument parser with every sub-command (:mod:`lynxsim.cli.program`)."""
+    from lynxsim.cli.program import build_parser as build
+
+    return build()
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code.
+    """Run the command line; returns the exit code (:func:`lynxsim.cli.program.main`).
 
     Ctrl-C exits 130 and SIGTERM 143, each after removing the partial outputs of
     the run (temporary files of :func:`lynxsim.fileio.atomic_path`).
     """
-    args = build_parser().parse_args(argv)
-    in_main_thread = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGTERM, _on_sigterm) if in_main_thread else None
-    try:
-        code: int = args.handler(args)
-    except (LynxsimError, OSError) as exc:
-        print(f"lynxsim: error: {_one_line(exc)}", file=sys.stderr)
-        return EXIT_ERROR
-    except KeyboardInterrupt:
-        print("lynxsim: interrupted", file=sys.stderr)
-        return 130
-    except _Terminated:
-        print("lynxsim: terminated", file=sys.stderr)
-        return 128 + signal.SIGTERM
-    finally:
-        if in_main_thread:
-            signal.signal(signal.SIGTERM, previous)
-    return code
+    from lynxsim.cli.program import main as program_main
+
+    return program_main(argv)
 
 
 def run() -> NoReturn:
     """The ``lynxsim`` program: :func:`main`, then exit with its code.
+
+    Ctrl-C and SIGTERM are handled from its first instruction on, the import of
+    the sub-commands included: one line on stderr, exit 130 or 143.
 
     After Ctrl-C or SIGTERM (the partial outputs already removed) the process
     ends at once, skipping the interpreter's shutdown: objects of a native
     library interrupted mid-call (an OMPL search) would otherwise be reported
     as leaked on stderr, breaking the one-line rule.
     """
-    code = main()
-    if code in (130, 128 + signal.SIGTERM):
+    signal.signal(signal.SIGTERM, on_sigterm)  # first: a signal from here on is one line
+    try:
+        code = main()
+    except KeyboardInterrupt:  # before main's own handling began
+        code = _EXIT_INTERRUPTED
+        print("lynxsim: interrupted", file=sys.stderr)
+    except Terminated:
+        code = _EXIT_TERMINATED
+        print("lynxsim: terminated", file=sys.stderr)
+    for signum in (signal.SIGINT, signal.SIGTERM):  # the command has ended: its code stands
+        signal.signal(signum, signal.SIG_IGN)
+    if code in (_EXIT_INTERRUPTED, _EXIT_TERMINATED):
         sys.stdout.flush()
         sys.stderr.flush()
         os._exit(code)
     sys.exit(code)
-
-
-def _one_line(exc: BaseException) -> str:
-    """An error's message on one line (multi-line messages joined with ' | ')."""
-    return " | ".join(line.strip() for line in str(exc).splitlines() if line.strip())

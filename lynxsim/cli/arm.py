@@ -84,8 +84,9 @@ def _workspace(args: argparse.Namespace) -> int:
     from tqdm import tqdm
 
     from lynxsim.plots.arm_workspace import plot_arm_workspace
+    from lynxsim.plots.style import check_png
 
-    check_destination(args.out)
+    check_destination(check_png(args.out, "--out"))
     rng = np.random.default_rng(args.seed)
     with tqdm(total=args.samples, unit="q", disable=args.quiet) as bar:
         samples = sample_workspace(

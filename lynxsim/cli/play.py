@@ -12,9 +12,9 @@ import numpy as np
 
 from lynxsim.cli.context import about_task
 from lynxsim.cli.flags import add_quality_flag, quality_of
-from lynxsim.errors import InvalidInputError
+from lynxsim.errors import InvalidInputError, OutputPathError
 from lynxsim.fileio import check_destination, output_path
-from lynxsim.sim.report import RunReport
+from lynxsim.sim.report import RunReport, is_run_report
 from lynxsim.web.page import page_from_file
 from lynxsim.web.replay_file import REPLAY_SUFFIX
 
@@ -154,7 +154,12 @@ def _play(args: argparse.Namespace) -> int:
     out = args.out or output_path("videos", task.name, built.label, suffix=".mp4")
     if out.suffix.lower() != ".mp4":
         raise InvalidInputError(f"--out must name an .mp4 file, got {out}")
-    check_destination(out.with_suffix(".json"))
+    report_file = check_destination(out.with_suffix(".json"))
+    if report_file.exists() and not is_run_report(report_file):
+        raise OutputPathError(
+            f"will not replace {report_file}: it is not a lynxsim run report (the report of {out} "
+            "goes there; move it or choose another --out)"
+        )
     replay = check_destination(out.with_suffix(REPLAY_SUFFIX))
     page = check_destination(out.with_suffix(".html")) if args.html else None
     if not args.no_video:

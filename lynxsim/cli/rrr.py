@@ -135,6 +135,7 @@ MAX_ALPHAS = 12
 
 def _workspace(args: argparse.Namespace) -> int:
     from lynxsim.plots.rrr import plot_rrr_workspace, view_extent
+    from lynxsim.plots.style import check_png
     from lynxsim.rrr.workspace import workspace_maps
 
     if len(args.alpha_deg) > MAX_ALPHAS:
@@ -142,7 +143,7 @@ def _workspace(args: argparse.Namespace) -> int:
             f"--alpha-deg takes 1 to {MAX_ALPHAS} orientations, got {len(args.alpha_deg)}"
         )
     limit = math.degrees(MAX_ANGLE_RAD)
-    check_destination(args.out)
+    check_destination(check_png(args.out, "--out"))
     alphas = [
         math.radians(check_range(a, "--alpha-deg", -limit, limit, "deg")) for a in args.alpha_deg
     ]

@@ -23,6 +23,7 @@ __all__ = [
     "StartInCollisionError",
     "TimingClearanceError",
     "UnknownPlannerError",
+    "clearance_text",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -45,6 +46,14 @@ class PlanningError(LynxsimError):
         self.label = label
 
 
+def clearance_text(clearance_m: float) -> str:
+    """A clearance for a message: metres, or "none (in collision)" where it is -inf.
+
+    Shared by the planning modules' messages.
+    """
+    return f"{clearance_m:.4g} m" if np.isfinite(clearance_m) else "none (in collision)"
+
+
 class StartInCollisionError(PlanningError):
     """The start configuration has less clearance than the margin.
 
@@ -57,7 +66,7 @@ class StartInCollisionError(PlanningError):
     def __init__(self, q: FloatArray, clearance_m: float, margin_m: float, label: str = "") -> None:
         super().__init__(
             f"the start {np.array2string(q, precision=4)} rad has clearance "
-            f"{clearance_m:.4g} m, less than the margin {margin_m:.4g} m",
+            f"{clearance_text(clearance_m)}, less than the margin {margin_m:.4g} m",
             label=label,
         )
         self.q = q
@@ -77,7 +86,7 @@ class GoalsInCollisionError(PlanningError):
         k = len(clearances_m)
         super().__init__(
             f"all {k} goal candidate{'s' if k != 1 else ''} have clearance below the margin "
-            f"{margin_m:.4g} m (largest {float(np.max(clearances_m)):.4g} m)",
+            f"{margin_m:.4g} m (largest {clearance_text(float(np.max(clearances_m)))})",
             label=label,
         )
         self.clearances_m = clearances_m
@@ -136,8 +145,9 @@ class TimingClearanceError(PlanningError):
         self, time_s: float, clearance_m: float, required_m: float, repairs: int, label: str = ""
     ) -> None:
         super().__init__(
-            f"the timed motion has clearance {clearance_m:.4g} m at {time_s:.4g} s, less than "
-            f"{required_m:.4g} m, after {repairs} repair rounds (stops and midpoints added)",
+            f"the timed motion has clearance {clearance_text(clearance_m)} at {time_s:.4g} s, "
+            f"less than {required_m:.4g} m, after {repairs} repair rounds "
+            "(stops and midpoints added)",
             label=label,
         )
         self.time_s = time_s

@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.errors import InvalidInputError
-from lynxsim.inputs import instance
+from lynxsim.errors import InvalidInputError, InvalidTypeError, short
+from lynxsim.inputs import instance, real_array, real_number
 from lynxsim.traj.limits import JointBounds, JointLimits
 
 __all__ = ["DEFAULT_MARGIN_M", "PlanRequest"]
@@ -62,12 +62,16 @@ class PlanRequest:
         n = bounds.n_joints
         if self.limits.n_joints != n:
             raise InvalidInputError(f"limits of {self.limits.n_joints} joints for {n} joints")
-        start = np.array(self.start, dtype=float)
+        for name in ("goal_sets", "grasped", "labels", "pose_names"):
+            value = getattr(self, name)
+            if not isinstance(value, tuple | list):
+                raise InvalidTypeError(f"{name} must be a tuple, got {short(value)}")
+        start = np.array(real_array(self.start, "start"))  # a copy, made read-only below
         if start.shape != (n,) or not np.isfinite(start).all():
             raise InvalidInputError(f"start must be {n} finite joint angles, got {start!r}")
         goals = []
         for i, g in enumerate(self.goal_sets):
-            arr = np.array(g, dtype=float)
+            arr = np.array(real_array(g, f"goal set {i + 1}"))
             if arr.ndim != 2 or arr.shape[1] != n or len(arr) == 0 or not np.isfinite(arr).all():
                 raise InvalidInputError(
                     f"goal set {i + 1} must be K >= 1 finite joint vectors of {n} joints, "
@@ -87,9 +91,7 @@ class PlanRequest:
             raise InvalidInputError(
                 f"pose_names must be {segments + 1} strings, got {self.pose_names!r}"
             )
-        lipschitz = self.lipschitz
-        if isinstance(lipschitz, bool) or not isinstance(lipschitz, int | float):
-            raise InvalidInputError(f"lipschitz must be a number, got {lipschitz!r}")
+        lipschitz = real_number(self.lipschitz, "lipschitz")
         if not (math.isfinite(lipschitz) and lipschitz > 0.0):
             raise InvalidInputError(f"lipschitz must be positive and finite, got {lipschitz!r}")
         start.setflags(write=False)

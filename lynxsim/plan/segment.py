@@ -28,7 +28,7 @@ from lynxsim.inputs import number_in_range
 from lynxsim.plan.cover.oracle import CoverOracle
 from lynxsim.plan.cover.search import DIRECT, FOUND
 from lynxsim.plan.edges import check_edges, check_path
-from lynxsim.plan.errors import NoPathError, PlanningError
+from lynxsim.plan.errors import NoPathError, PlanningError, clearance_text
 from lynxsim.plan.ompl_planners import COMPILED, MAX_SEED, PlannerName, check_planner, solve
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.plan.problem import Problem, make_problem
@@ -184,7 +184,7 @@ def finish_segment(
         bad = int(np.flatnonzero(~verdict.clear)[0])
         raise PlanningError(
             f"internal error: edge {bad + 1} of the planned path failed its final check "
-            f"(clearance {float(verdict.min_clearance_m[bad]):.4g} m)",
+            f"(clearance {clearance_text(float(verdict.min_clearance_m[bad]))})",
             label=p.label,
         )
     path.setflags(write=False)

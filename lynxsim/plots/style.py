@@ -6,6 +6,7 @@ import functools
 import os
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 from typing import ParamSpec, TypeVar
 
 import matplotlib
@@ -14,9 +15,10 @@ matplotlib.use("Agg")
 
 from matplotlib.figure import Figure
 
+from lynxsim.errors import OutputPathError
 from lynxsim.fileio import atomic_path
 
-__all__ = ["new_figure", "plain_text", "save_figure"]
+__all__ = ["check_png", "new_figure", "plain_text", "save_figure"]
 
 P = ParamSpec("P")
 R = TypeVar("R")
@@ -46,7 +48,24 @@ def new_figure(width_in: float = 10.0, height_in: float = 7.0) -> Figure:
     return Figure(figsize=(width_in, height_in), layout="constrained")
 
 
+def check_png(dest: str | os.PathLike[str], name: str = "dest") -> Path:
+    """``dest`` as a path if it names a ``.png`` file (a figure is PNG bytes).
+
+    Raises:
+        OutputPathError: Another suffix (``x.jpg`` would hold PNG bytes).
+    """
+    path = Path(dest)
+    if path.suffix.lower() != ".png":
+        raise OutputPathError(f"{name} must name a .png file (the figure is PNG), got {path}")
+    return path
+
+
 def save_figure(fig: Figure, dest: str | os.PathLike[str], dpi: int = 110) -> None:
-    """Save ``fig`` as PNG to ``dest`` atomically."""
+    """Save ``fig`` as PNG to ``dest`` atomically.
+
+    Raises:
+        OutputPathError: ``dest`` does not name a ``.png`` file (:func:`check_png`).
+    """
+    check_png(dest)
     with atomic_path(dest) as tmp:
         fig.savefig(tmp, dpi=dpi, format="png")

@@ -29,7 +29,13 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.bounds import MAX_COORDINATE_M, MAX_SAMPLES, MAX_SEGMENT_S, MIN_SEGMENT_S
+from lynxsim.bounds import (
+    MAX_ANGLE_RAD,
+    MAX_COORDINATE_M,
+    MAX_SAMPLES,
+    MAX_SEGMENT_S,
+    MIN_SEGMENT_S,
+)
 from lynxsim.errors import InvalidInputError, NonFiniteInputError, SegmentDurationError
 from lynxsim.inputs import finite_array, flag, instance, positive_number, real_array
 from lynxsim.rrr.actuated import (
@@ -285,8 +291,9 @@ def _check_waypoints(waypoints: object) -> FloatArray:
     """Poses of shape (N, 3), N >= 2, finite, x and y within the coordinate bound, reachable.
 
     Raises:
-        InvalidInputError: Not real numbers, a bad shape, or x or y beyond
-            :data:`~lynxsim.bounds.MAX_COORDINATE_M`.
+        InvalidInputError: Not real numbers, a bad shape, x or y beyond
+            :data:`~lynxsim.bounds.MAX_COORDINATE_M`, or alpha beyond
+            :data:`~lynxsim.bounds.MAX_ANGLE_RAD`.
         NonFiniteInputError: A value is NaN or infinite.
         UnreachablePlatformPoseError: A leg cannot reach a pose (names the pose
             and the legs).
@@ -304,6 +311,13 @@ def _check_waypoints(waypoints: object) -> FloatArray:
         raise InvalidInputError(
             f"waypoint {i + 1}: x and y must be within ±{MAX_COORDINATE_M:g} m "
             f"(the robot spans under 1 m), got {w[i, :2].tolist()} m"
+        )
+    turned = np.abs(w[:, 2]) > MAX_ANGLE_RAD
+    if turned.any():
+        i = int(np.argmax(turned))
+        raise InvalidInputError(
+            f"waypoint {i + 1}: alpha must be within ±{math.degrees(MAX_ANGLE_RAD):g} deg "
+            f"(two turns), got {math.degrees(w[i, 2]):g} deg"
         )
     return w
 

@@ -25,7 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import wrap_angle
-from lynxsim.bounds import MAX_CELLS, MAX_COORDINATE_M, check_range
+from lynxsim.bounds import MAX_ANGLE_RAD, MAX_CELLS, MAX_COORDINATE_M, check_range
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.inputs import real_array, real_number
 from lynxsim.rrr.geometry import RRR_ROBOT, RRRGeometry, check_rrr_geometry, rotation
@@ -51,11 +51,11 @@ MAX_ORIENTATIONS = 10_000
 
 
 def _angle(value: object, name: str) -> float:
-    """One finite angle [rad], or InvalidInputError / NonFiniteInputError."""
+    """One finite angle within two turns [rad], or InvalidInputError / NonFiniteInputError."""
     v = real_number(value, name)
     if not math.isfinite(v):
         raise NonFiniteInputError(f"{name} must be finite, got {v!r} rad")
-    return v
+    return check_range(v, name, -MAX_ANGLE_RAD, MAX_ANGLE_RAD, "rad")
 
 
 def _angles(values: object, name: str) -> list[float]:
@@ -68,8 +68,7 @@ def _angles(values: object, name: str) -> list[float]:
         )
     if not np.isfinite(arr).all():
         raise NonFiniteInputError(f"{name} must be finite, got {arr.tolist()!r}")
-    out: list[float] = arr.tolist()
-    return out
+    return [_angle(v, f"{name}[{i}]") for i, v in enumerate(arr.tolist())]
 
 
 def _one_mode(mode: object) -> int:
@@ -293,8 +292,8 @@ def workspace_map(
         InvalidInputError: ``x`` or ``y`` is not a non-empty 1-D array of finite
             real numbers within ±:data:`~lynxsim.bounds.MAX_COORDINATE_M`, the
             grid has more than :data:`~lynxsim.bounds.MAX_CELLS` points (checked
-            before allocating), ``alpha`` is not a finite number, or a bad
-            ``geometry``.
+            before allocating), ``alpha`` is not a finite number within two
+            turns (±720 deg), or a bad ``geometry``.
     """
     geometry = check_rrr_geometry(geometry)
     if not isinstance(with_theta, bool | np.bool_):

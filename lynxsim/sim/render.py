@@ -181,19 +181,23 @@ _LEAN_SHAPES = (8, 4, 1)
 
 @contextlib.contextmanager
 def tessellation(model: mujoco.MjModel, quality: Quality) -> Iterator[None]:
-    """While a GL context is made: the built-in shapes as coarse as ``quality`` draws them.
+    """While a GL context is made: the shapes and multisampling ``quality`` draws with.
 
-    MuJoCo builds its shapes once, when the context is made, from
-    ``model.vis.quality``; the model's values are put back afterwards.
+    MuJoCo builds its shapes and its off-screen buffer once, when the context is
+    made, from ``model.vis.quality``: the built-in shapes coarse for LEAN, no
+    multisampling but for DEFAULT. The model's values are put back afterwards,
+    so that a later renderer of the same model gets its own.
     """
     q = model.vis.quality
-    kept = (int(q.numslices), int(q.numstacks), int(q.numquads))
+    kept = (int(q.numslices), int(q.numstacks), int(q.numquads), int(q.offsamples))
     if quality is Quality.LEAN:
         q.numslices, q.numstacks, q.numquads = _LEAN_SHAPES
+    if quality is not Quality.DEFAULT:
+        q.offsamples = 0
     try:
         yield
     finally:
-        q.numslices, q.numstacks, q.numquads = kept
+        q.numslices, q.numstacks, q.numquads, q.offsamples = kept
 
 
 def set_scene_flags(flags: npt.NDArray[np.uint8], quality: Quality) -> None:
@@ -218,8 +222,8 @@ class SceneRenderer:
     """A MuJoCo renderer bound to one model, camera and quality preset.
 
     Args:
-        model: The model; with ``Quality.FAST`` its off-screen multisampling is
-            set to 0 (before the context is created).
+        model: The model (left as it is given: the preset's multisampling and
+            shapes apply to this renderer's context only, :func:`tessellation`).
         settings: Size, camera, quality.
 
     Raises:
@@ -238,8 +242,6 @@ class SceneRenderer:
         if self._camera < 0:
             names = list(camera_names(model))
             raise InvalidInputError(f"no camera named {settings.camera!r}; available: {names}")
-        if settings.quality is not Quality.DEFAULT:
-            model.vis.quality.offsamples = 0
         self._model = model
         self._settings = settings
         with tessellation(model, settings.quality):

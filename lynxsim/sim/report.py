@@ -8,6 +8,7 @@ field names carry the unit.
 from __future__ import annotations
 
 import dataclasses
+import json
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -15,7 +16,14 @@ from typing import Any
 
 from lynxsim.fileio import write_json
 
-__all__ = ["CollisionVerdict", "ContactPair", "ObstacleClearance", "RobotMetrics", "RunReport"]
+__all__ = [
+    "CollisionVerdict",
+    "ContactPair",
+    "ObstacleClearance",
+    "RobotMetrics",
+    "RunReport",
+    "is_run_report",
+]
 
 
 @dataclass(frozen=True)
@@ -155,3 +163,16 @@ class RunReport:
     def write_json(self, dest: str | os.PathLike[str]) -> Path:
         """Write the report as JSON, atomically."""
         return write_json(dest, self.to_dict())
+
+
+def is_run_report(path: str | os.PathLike[str]) -> bool:
+    """Whether ``path`` holds a :class:`RunReport` as :meth:`RunReport.write_json` wrote it.
+
+    A command may replace its own report from an earlier run, never another
+    file that happens to have the name.
+    """
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return False
+    return isinstance(data, dict) and {f.name for f in dataclasses.fields(RunReport)} <= set(data)

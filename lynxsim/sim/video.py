@@ -14,6 +14,8 @@ from __future__ import annotations
 import contextlib
 import os
 import queue
+import re
+import signal
 import subprocess
 import tempfile
 import threading
@@ -52,10 +54,27 @@ class FrameSink(Protocol):
         """Add one frame (copied: the caller may reuse ``im`` at once)."""
 
 
+_FFMPEG_TAG = re.compile(r"^(\[[^\]]*\]\s*)+")
+"""ffmpeg's ``[out#0/mp4 @ 0x55d0...]`` prefixes: its internals, not the user's concern."""
+
+
 def _last_line(stream: IO[bytes]) -> str:
     stream.seek(0)
     lines = stream.read().decode(errors="replace").strip().splitlines()
-    return lines[-1] if lines else "no message"
+    return _FFMPEG_TAG.sub("", lines[-1]).strip() if lines else ""
+
+
+def _exit_reason(code: int, message: str) -> str:
+    """Why ffmpeg ended with ``code``, in words: its last message, or the signal that ended it."""
+    if code < 0:
+        if -code == getattr(signal, "SIGXFSZ", None):
+            return "File too large (the file size limit was reached)"
+        try:
+            name = signal.Signals(-code).name
+        except ValueError:
+            name = f"signal {-code}"
+        return message or f"the encoder was killed by {name}"
+    return message or f"the encoder failed (exit status {code})"
 
 
 class _Encoder:
@@ -67,10 +86,15 @@ class _Encoder:
         log: File receiving ffmpeg's messages (read back when it fails).
         exact: Keep the frames' size and full colour resolution (yuv444p), else
             scale them up to whole macroblocks and halve the colour planes (yuv420p).
+        dest: The file the user asked for, named in errors (``path`` is its
+            temporary name); default ``path``.
     """
 
-    def __init__(self, path: Path, fps: float, log: IO[bytes], exact: bool = False) -> None:
+    def __init__(
+        self, path: Path, fps: float, log: IO[bytes], exact: bool = False, dest: Path | None = None
+    ) -> None:
         self._path = path
+        self._dest = path if dest is None else dest
         self._fps = fps
         self._log = log
         self._exact = exact
@@ -140,12 +164,15 @@ class _Encoder:
 
     def _check(self) -> None:
         if self._failure is not None:
-            raise VideoError(f"the video encoder stopped: {self._failure_message()}")
+            raise VideoError(f"cannot write {self._dest}: {self._failure_message()}")
 
     def _failure_message(self) -> str:
-        if self._proc is not None and self._proc.poll() is not None:
-            return _last_line(self._log)
-        return str(self._failure)
+        if self._proc is not None and (code := self._proc.poll()) is not None:
+            return _exit_reason(code, _last_line(self._log))
+        failure = self._failure
+        if isinstance(failure, OSError) and failure.errno:
+            return os.strerror(failure.errno)
+        return f"the encoder stopped ({failure})"
 
     def _stop_thread(self) -> None:
         if self._thread is not None:
@@ -169,8 +196,7 @@ class _Encoder:
         code = self._proc.wait()
         if code != 0:
             raise VideoError(
-                f"the video encoder failed writing {self._path} (exit {code}): "
-                f"{_last_line(self._log)}"
+                f"cannot write {self._dest}: {_exit_reason(code, _last_line(self._log))}"
             )
         self._check()
 
@@ -232,7 +258,7 @@ def mp4_writer(
     fps = check_range(fps, "fps", MIN_FPS, MAX_FPS, "frames/s")
     check_destination(dest)
     with atomic_path(dest) as tmp, tempfile.TemporaryFile() as log:
-        encoder = _Encoder(tmp, fps, log, exact)
+        encoder = _Encoder(tmp, fps, log, exact, dest=dest)
         try:
             yield encoder
             if encoder.frames == 0:

@@ -82,3 +82,16 @@ def test_workspace_writes_png(tmp_path, capsys):
     assert main(["workspace", "--out", str(dest), "--samples", "20000", "--quiet"]) == 0
     assert dest.read_bytes()[:4] == b"\x89PNG"
     assert "behind the base plane" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("command", ["workspace", "rrr"])
+@pytest.mark.parametrize("name", ["ws.jpg", "ws.PDF", "ws"])
+def test_workspace_out_must_name_a_png_file(tmp_path, capsys, command, name):
+    dest = tmp_path / name
+    argv = ["workspace", "--out", str(dest)] if command == "workspace" else ["rrr", "workspace"]
+    if command == "rrr":
+        argv += ["--out", str(dest)]
+    assert main(argv) == 1
+    err = capsys.readouterr().err
+    assert err == f"lynxsim: error: --out must name a .png file (the figure is PNG), got {dest}\n"
+    assert list(tmp_path.iterdir()) == []

@@ -88,8 +88,54 @@ def test_full_disk_leaves_the_previous_video_untouched(tmp_path):
     assert proc.stderr.count("\n") == 1, proc.stderr
     assert proc.stderr.startswith("lynxsim: error: "), proc.stderr
     assert "Traceback" not in proc.stderr
+    assert proc.stderr.startswith(f"lynxsim: error: {task}: cannot write {dest}: "), proc.stderr
+    assert ".tmp" not in proc.stderr  # the temporary name is no concern of the user's
+    assert "@ 0x" not in proc.stderr  # nor ffmpeg's internals
+    assert "exit -" not in proc.stderr
     assert dest.read_bytes() == b"the previous video"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["clip.mp4", "task.toml"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "written"),
+    [
+        (["traj", "{task}", "--out-dir", "{tmp}/plots", "--no-compare"], "{tmp}/plots/short_"),
+        (["workspace", "--out", "{tmp}/ws.png", "--samples", "2000", "--quiet"], "{tmp}/ws.png"),
+    ],
+    ids=["traj", "workspace"],
+)
+def test_a_full_disk_names_the_file_not_its_temporary_name(tmp_path, argv, written):
+    task = _task(tmp_path)
+    argv = [a.format(task=task, tmp=tmp_path) for a in argv]
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", *argv],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(2_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    (line,) = proc.stderr.splitlines()
+    assert line.startswith(f"lynxsim: error: cannot write {written.format(tmp=tmp_path)}"), line
+    assert line.endswith(": File too large"), line
+    assert ".tmp" not in line
+
+
+def test_full_disk_leaves_no_empty_folder(tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "new" / "deeper" / "clip.mp4"
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", "play", str(task), "--out", str(dest), "--quiet"],
+        capture_output=True,
+        text=True,
+        preexec_fn=full_disk(20_000),
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert proc.returncode == 1, proc.stderr
+    assert proc.stderr.count("\n") == 1, proc.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["task.toml"]
 
 
 def test_sigterm_removes_partial_outputs(tmp_path):
@@ -205,3 +251,21 @@ def test_a_wrong_out_is_refused_before_any_work(cli, tmp_path, argv):
     assert result.code == 1
     assert result.err == f"lynxsim: error: will not replace {folder}: it is a folder\n"
     assert result.out == ""
+
+
+def test_play_never_replaces_a_json_file_that_is_not_its_report(cli, tmp_path):
+    task = _task(tmp_path)
+    dest = tmp_path / "clip.mp4"
+    first = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert first.code == 0, first.err
+    again = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert again.code == 0, again.err  # its own report from before is replaced
+    mine = dest.with_suffix(".json")
+    mine.write_text('{"notes": "my own file"}\n')
+    result = cli("play", str(task), "--out", str(dest), "--no-video", "--quiet")
+    assert result.code == 1
+    assert result.err == (
+        f"lynxsim: error: will not replace {mine}: it is not a lynxsim run report "
+        f"(the report of {dest} goes there; move it or choose another --out)\n"
+    )
+    assert mine.read_text() == '{"notes": "my own file"}\n'

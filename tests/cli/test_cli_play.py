@@ -38,9 +38,11 @@ height_mm = 400.0
 """
 
 
-def test_play_json_reports_collision_and_exits_zero(capsys):
+def test_play_json_reports_collision_and_exits_zero(capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the report goes to ./videos: not the repository's
     code = main(["play", str(ROOT / "tasks" / "pick_and_place.toml"), "--no-video", "--json"])
     assert code == 0
+    assert (tmp_path / "videos" / "pick_and_place_quintic.json").is_file()
     report = json.loads(capsys.readouterr().out)
     assert report["collided"] is True
     assert report["trajectory"] == "quintic"
@@ -104,10 +106,12 @@ def test_demo_renders_every_type_with_plots_and_summary(tmp_path, capsys):
     assert "skipped: the obstacle map needs" in printed
 
 
-def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys):
+def test_cli_play_runs_rrr_tasks_and_prints_the_robot_metrics(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # the report goes to ./videos: not the repository's
     task = tmp_path / "short_rrr.toml"
     task.write_text(short_rrr_task())
     assert main(["play", str(task), "--no-video", "--json"]) == 0
+    assert (tmp_path / "videos" / "short_rrr_quintic.json").is_file()
     report = json.loads(capsys.readouterr().out)
     assert report["trajectory"] == "quintic"
     assert set(report["metrics"]) == set(RRR_METRIC_NAMES)

@@ -283,3 +283,10 @@ def test_platform_limits_and_samples_refuse_non_numbers():
         path.sample([0.0, math.nan])
     with pytest.raises(InvalidInputError, match=r"sample times must have shape \(T,\)"):
         path.sample(np.zeros((2, 2)))
+
+
+def test_an_orientation_beyond_two_turns_is_refused():
+    home = np.array(HOME_POSE)
+    far = home + np.array([0.0, 0.0, 4.0 * math.pi + 1e-6])
+    with pytest.raises(InvalidInputError, match=r"waypoint 2: alpha must be within ±720 deg"):
+        platform_path(np.stack([home, far]), 1.0)

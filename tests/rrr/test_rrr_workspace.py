@@ -258,3 +258,12 @@ def test_workspace_map_bounds_its_grid_and_checks_with_theta():
 def test_orientation_and_mode_functions_refuse_odd_inputs(call, match):
     with pytest.raises(InvalidInputError, match=match):
         call()
+
+
+@pytest.mark.parametrize("alpha", [4.0 * math.pi + 1e-9, -1e6], ids=["just-past-two-turns", "far"])
+def test_orientations_beyond_two_turns_are_refused(alpha):
+    xs = np.linspace(-0.1, 0.1, 3)
+    with pytest.raises(InvalidInputError, match=r"alpha must be between -12\.566\d* and 12\.566"):
+        workspace_map(xs, xs, alpha)
+    with pytest.raises(InvalidInputError, match=r"alphas\[1\] must be between"):
+        workspace_maps([0.0, alpha], xs, xs)

@@ -161,8 +161,21 @@ def test_quality_presets_choose_shadows_and_multisampling(quality, multisampling
         assert not flags[int(mujoco.mjtRndFlag.mjRND_REFLECTION)]
         lean = quality is Quality.LEAN
         assert bool(flags[int(mujoco.mjtRndFlag.mjRND_SKYBOX)]) is not lean
-    assert int(model.vis.quality.offsamples) == (samples if multisampling else 0)
+        context = renderer._renderer._mjr_context
+        assert int(context.offSamples) == (samples if multisampling else 0)
+    assert int(model.vis.quality.offsamples) == samples  # the model's, put back
     assert int(model.vis.quality.numslices) == 28  # the model's, put back after the context
+
+
+def test_a_fast_renderer_leaves_the_models_multisampling_to_later_renderers():
+    model = load_arm_scene()
+    samples = int(model.vis.quality.offsamples)
+    assert samples > 0
+    size = {"width": 64, "height": 48}
+    with SceneRenderer(model, RenderSettings(quality=Quality.FAST, **size)):
+        pass
+    with SceneRenderer(model, RenderSettings(quality=Quality.DEFAULT, **size)) as renderer:
+        assert int(renderer._renderer._mjr_context.offSamples) == samples
 
 
 def test_overlay_marks_targets_and_path():

@@ -28,7 +28,7 @@ from lynxsim.arm.ik import ik, ik_candidates
 from lynxsim.arm.motion.space import ARM_LIMITS, joint_bounds
 from lynxsim.arm.motion.waypoints import ArmWaypointsLike, resolve_waypoints
 from lynxsim.bounds import MAX_SEGMENT_S, MIN_SEGMENT_S
-from lynxsim.errors import InvalidInputError, OutOfReachError, PathError
+from lynxsim.errors import InvalidInputError, JointRangeError, OutOfReachError, PathError
 from lynxsim.inputs import instance, number_in_range
 from lynxsim.poses import ArmPose
 from lynxsim.traj.check import Extremes, check_grid, check_trajectory, segment_extremes
@@ -195,10 +195,27 @@ class LineSegment:
         return out.transpose(0, 2, 1), in_reach
 
 
-def _branch(q: FloatArray, pose: ArmPose, geometry: ArmGeometry) -> int:
-    """The IK candidate slot that reproduces the joints ``q`` of a waypoint."""
+def _branch(q: FloatArray, pose: ArmPose, name: str, geometry: ArmGeometry) -> int:
+    """The IK candidate slot that reproduces the joints ``q`` of waypoint ``name``.
+
+    Raises:
+        JointRangeError: The IK has no candidate for its pose: joints within the
+            ranges' slack but past a limit (a base angle a hair over 90 deg, which
+            the IK reads as the arm reaching back), where no line can start.
+    """
     result = ik(np.asarray(pose.position), pose.pitch, q[4], geometry=geometry)
     distance = np.linalg.norm(wrap_angle(result.candidates - q), axis=-1)
+    if np.isnan(distance).all():
+        excess = np.maximum(geometry.lower - q, q - geometry.upper)
+        j = int(np.argmax(excess))
+        limit = geometry.lower[j] if q[j] < geometry.lower[j] else geometry.upper[j]
+        raise JointRangeError(
+            f"waypoint {name}: joint {j + 1} ({geometry.joint_names[j]}) = "
+            f"{math.degrees(q[j]):.10g} deg is at its limit {math.degrees(limit):.4g} deg, "
+            "where the IK finds no solution of its pose: a straight line cannot start there "
+            "(move it inside the range)",
+            joint=j + 1,
+        )
     return int(np.nanargmin(distance))
 
 
@@ -289,14 +306,16 @@ def cartesian_line(
         LimitViolationError: A joint leaves its range on a line, or given durations
             break a limit (names joint, time, excess).
         UnreachablePoseError: A pose has no IK solution (names the pose).
+        JointRangeError: A line would start from joints a hair past a limit (within
+            the ranges' slack) whose pose the IK cannot solve.
         InvalidInputError: Malformed waypoints, durations or options, or limits
             so low that a line needs more than 3600 s.
     """
     bounds, limits, stretch = check_options(joint_bounds(geometry), limits, stretch)
     wp = resolve_waypoints(waypoints, geometry)
     unit = [
-        LineSegment(a, b, 1.0, _branch(q, a, geometry), geometry)
-        for a, b, q in zip(wp.poses[:-1], wp.poses[1:], wp.q[:-1])
+        LineSegment(a, b, 1.0, _branch(q, a, name, geometry), geometry)
+        for a, b, q, name in zip(wp.poses[:-1], wp.poses[1:], wp.q[:-1], wp.names)
     ]
     paths = [_UnitPath(k, seg, wp.names) for k, seg in enumerate(unit)]
     for path in paths:

@@ -41,7 +41,7 @@ def _random_segments(n: int, seed: int) -> list[LineSegment]:
     while len(out) < n:
         a, b = as_poses(rng.uniform(LINE_LOWER, LINE_UPPER, (2, 5)))
         q = ik(np.asarray(a.position), a.pitch, a.roll).q
-        segment = LineSegment(a, b, 1.7, _branch(q, a, LYNX_ARM))
+        segment = LineSegment(a, b, 1.7, _branch(q, a, "P1", LYNX_ARM))
         if np.abs(segment.states(np.linspace(0.0, 1.7, 201))[1]).max() <= 1.0:
             out.append(segment)
     return out
