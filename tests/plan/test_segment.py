@@ -90,9 +90,14 @@ def test_of_several_goals_one_valid_is_reached():
     assert np.array_equal(result.path[-1], goals[result.goal_index])
 
 
-@pytest.mark.parametrize("name", ["RRT", "RRTstar", "BITstar", "AORRTC", "FMT"])
-def test_other_ompl_planners_find_a_clear_path(name):
-    result = plan(planner=name, time_limit_s=0.3)
+# The anytime planners use their whole wall-clock budget, so theirs is short; FMT* stops at its
+# first solution but needs its batch of samples, which a loaded machine may not give it in 0.3 s.
+@pytest.mark.parametrize(
+    ("name", "time_limit_s"),
+    [("RRT", 0.3), ("RRTstar", 0.3), ("BITstar", 0.3), ("AORRTC", 0.3), ("FMT", 5.0)],
+)
+def test_other_ompl_planners_find_a_clear_path(name, time_limit_s):
+    result = plan(planner=name, time_limit_s=time_limit_s)
     assert result.planner == name
     assert check_path(
         result.path, WALL, lipschitz=LIPSCHITZ, margin_m=MARGIN_M, grasped=False
