@@ -206,7 +206,7 @@ def test_an_interrupt_while_videos_are_encoded_leaves_no_dataset(tmp_path, inter
             tmp_path, "lerobot", episodes=3, images=("front",), image_size=16,
             on_episode=stop_at_the_second,
         )  # fmt: skip
-    assert _tree(tmp_path) == ["lynxsim", "lynxsim/pick-and-place-v1"]  # no hidden .tmp left
+    assert _tree(tmp_path) == []  # no hidden .tmp, and no folder made for it, left
 
 
 def test_videos_must_be_a_bool(tmp_path):
@@ -272,7 +272,7 @@ def test_a_full_disk_is_one_line_and_leaves_no_dataset(tmp_path, argv, limit_byt
     assert proc.returncode == 1, proc.stderr
     assert proc.stderr.count("\n") == 1, proc.stderr
     assert proc.stderr.startswith("lynxsim: error: "), proc.stderr
-    assert _tree(tmp_path) == ["lynxsim", "lynxsim/pick-and-place-v1"]  # no hidden .tmp left
+    assert _tree(tmp_path) == []  # no hidden .tmp, and no folder made for it, left
 
 
 def test_the_printed_command_names_the_loading_script(tmp_path):
