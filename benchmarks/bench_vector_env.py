@@ -98,10 +98,10 @@ def plain_run(
 
 
 def vector_run(
-    num_envs: int, steps: int, mode: str, **kwargs: Any
+    num_envs: int, steps: int, mode: str, env_id: str = ENV_ID, **kwargs: Any
 ) -> Callable[[], tuple[int, float, float]]:
     """A timed run of a vector env of ``num_envs``: (env steps, wall [s], CPU [s])."""
-    env = gym.make_vec(ENV_ID, num_envs=num_envs, vectorization_mode=mode, **kwargs)
+    env = gym.make_vec(env_id, num_envs=num_envs, vectorization_mode=mode, **kwargs)
     env.action_space.seed(0)
     vector_steps = max(steps // num_envs, 4)
     actions = [env.action_space.sample() for _ in range(vector_steps)]

@@ -29,6 +29,7 @@ from pathlib import Path
 
 import av
 import numpy as np
+import pyarrow as pa
 import pyarrow.parquet as pq
 import torch
 from lerobot.datasets.lerobot_dataset import LeRobotDataset
@@ -66,20 +67,15 @@ def main() -> int:
     failures = []
     if (dataset.num_episodes, dataset.num_frames) != (info["total_episodes"], info["total_frames"]):
         failures.append("counts differ from info.json")
-    data = pq.read_table(sorted((args.folder / "data").glob("*/*.parquet"))[0])
+    files = sorted((args.folder / "data").glob("chunk-*/file-*.parquet"))  # in frame order
+    data = pa.concat_tables([pq.read_table(f) for f in files])
     rows = len(data)
-    step = max(1, rows // 25)  # 25 frames spread over the file's episodes
+    step = max(1, rows // 25)  # 25 frames spread over the episodes
     episode_index = data.column("episode_index").to_pylist()
-    actions = np.stack(data.column("action").to_pylist()[:rows])
-    states = np.stack(data.column("observation.state").to_pylist()[:rows])
+    actions = np.stack(data.column("action").to_pylist())
+    states = np.stack(data.column("observation.state").to_pylist())
     cameras = [k for k, f in info["features"].items() if f["dtype"] in ("video", "image")]
-    videos = {  # every frame of each camera's first video file, decoded by PyAV
-        k: _decode(
-            args.folder / info["video_path"].format(video_key=k, chunk_index=0, file_index=0)
-        )
-        for k in cameras
-        if info["features"][k]["dtype"] == "video"
-    }
+    videos: dict[Path, np.ndarray] = {}  # every frame of a video file, decoded by PyAV
     for i in range(0, rows, step):
         item = dataset[i]
         if int(item["index"]) != i or int(item["episode_index"]) != episode_index[i]:
@@ -92,11 +88,14 @@ def main() -> int:
             h, w, c = info["features"][key]["shape"]
             if tuple(item[key].shape) != (c, h, w):
                 failures.append(f"frame {i}: {key} is {tuple(item[key].shape)}, not {(c, h, w)}")
-            elif key in videos:
-                episode = dataset.meta.episodes[int(item["episode_index"])]
-                start = episode[f"videos/{key}/from_timestamp"]
+            elif info["features"][key]["dtype"] == "video":
+                e = int(item["episode_index"])
+                path = args.folder / dataset.meta.get_video_file_path(e, key)
+                if path not in videos:
+                    videos[path] = _decode(path)
+                start = dataset.meta.episodes[e][f"videos/{key}/from_timestamp"]
                 position = round((start + float(item["timestamp"])) * info["fps"])
-                frame = videos[key][position].astype(np.float32) / 255
+                frame = videos[path][position].astype(np.float32) / 255
                 if np.abs(item[key].numpy().transpose(1, 2, 0) - frame).max() > 1 / 255:
                     failures.append(f"frame {i}: {key} is not frame {position} of its video")
         if item["task"] != dataset.meta.tasks.index[0]:

@@ -551,6 +551,7 @@ _ENV_ARGS: dict[str, tuple[Any, ...]] = {
     "collision_penalty": (-1.0, math.nan, math.inf, "a", 10**400, 1e300),
     "position_step": (0.0, -0.1, math.inf, 1e300, "a", None),
     "pitch_step": (0.0, math.nan, 100.0, [0.1]),
+    "roll_step": (0.0, -0.1, math.nan, 100.0, "a", None),
     "joint_step": (0.0, -0.05, 1e9, complex(1, 1)),
     "width": (0, -1, 10**9, 64.5, "640", None, True),
     "height": (0, 10**400, 2.0, np.float64(480.0)),
@@ -572,7 +573,7 @@ _ENV_VALID: dict[str, tuple[Any, ...]] = {
     "width": (64, 128),
     "height": (48, 96),
     "camera": ("front", "top"),
-    "control": ("tool", "joint"),
+    "control": ("tool", "joint", "tool_roll"),
     "collision_check": ("control_step", "physics_step"),
 }
 

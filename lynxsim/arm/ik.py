@@ -46,7 +46,7 @@ from lynxsim.errors import (
 )
 from lynxsim.inputs import real_array
 
-__all__ = ["IKResult", "IKStatus", "ik", "ik_candidates"]
+__all__ = ["IKResult", "IKStatus", "ik", "ik_candidates", "ik_unchecked"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -214,27 +214,9 @@ def ik(
     if not finite.all():
         p = np.where(finite[:, None], p, 0.0)
         phi = np.where(finite, phi, 0.0)
-    q5 = np.mod(np.where(finite, q5, 0.0), 2 * np.pi)
-    cand, in_reach = ik_candidates(p, phi, geometry)
-    in_reach &= finite
-    cand[4] = q5
-
-    lo = (geometry.lower - LIMIT_TOL)[:, None, None]
-    hi = (geometry.upper + LIMIT_TOL)[:, None, None]
-    valid = ((cand >= lo) & (cand <= hi)).all(axis=0)  # (4, n)
-    valid &= in_reach
+    ref_flat = None if ref is None else np.broadcast_to(ref, batch + (5,)).reshape(n, 5)
+    cand, in_reach, valid, q = _solve(p, phi, np.where(finite, q5, 0.0), ref_flat, geometry, finite)
     any_valid = valid.any(axis=0)
-    if ref is None:
-        best = np.argmax(valid, axis=0)
-    else:
-        ref_flat = np.broadcast_to(ref, batch + (5,)).reshape(n, 5).T[:, None, :]
-        score = np.linalg.norm(wrap_angle(cand - ref_flat), axis=0)
-        best = np.argmin(np.where(valid, score, np.inf), axis=0)
-    cand[:, :, ~in_reach] = np.nan
-    # Not clipped onto the limits: a solution may lie up to LIMIT_TOL outside a
-    # range, which keeps the tool exactly on the target (clipping would not).
-    q = cand[:, best, np.arange(n)].T
-    q[~any_valid] = np.nan
     cand_view = np.moveaxis(cand, (0, 1), (2, 1)).reshape(batch + (4, 5))  # a view
 
     status = np.select(
@@ -260,6 +242,74 @@ def ik(
         valid=valid.T.reshape(batch + (4,)),
         reach_m=(geometry.upper_arm, geometry.forearm),
     )
+
+
+def _solve(
+    p: FloatArray,
+    phi: FloatArray,
+    q5: FloatArray,
+    ref: FloatArray | None,
+    geometry: ArmGeometry,
+    finite: npt.NDArray[np.bool_] | None = None,
+) -> tuple[FloatArray, npt.NDArray[np.bool_], npt.NDArray[np.bool_], FloatArray]:
+    """The closed form and the choice among its candidates, on checked arrays.
+
+    Returns:
+        ``(candidates, in_reach, valid, q)``: candidates (5, 4, n) (NaN out of
+        reach), in reach (n,), valid (4, n), the chosen joints (n, 5) (NaN where
+        none is valid).
+    """
+    n = p.shape[0]
+    cand, in_reach = ik_candidates(p, phi, geometry)
+    if finite is not None:
+        in_reach &= finite
+    cand[4] = np.mod(q5, 2 * np.pi)
+
+    lo = (geometry.lower - LIMIT_TOL)[:, None, None]
+    hi = (geometry.upper + LIMIT_TOL)[:, None, None]
+    valid = ((cand >= lo) & (cand <= hi)).all(axis=0)  # (4, n)
+    valid &= in_reach
+    any_valid = valid.any(axis=0)
+    if ref is None:
+        best = np.argmax(valid, axis=0)
+    else:
+        score = np.linalg.norm(wrap_angle(cand - ref.T[:, None, :]), axis=0)
+        best = np.argmin(np.where(valid, score, np.inf), axis=0)
+    cand[:, :, ~in_reach] = np.nan
+    # Not clipped onto the limits: a solution may lie up to LIMIT_TOL outside a
+    # range, which keeps the tool exactly on the target (clipping would not).
+    q = cand[:, best, np.arange(n)].T
+    q[~any_valid] = np.nan
+    return cand, in_reach, valid, q
+
+
+def ik_unchecked(
+    position: FloatArray, pitch: FloatArray, roll: FloatArray, q_ref: FloatArray
+) -> tuple[FloatArray, npt.NDArray[np.int8]]:
+    """:func:`ik` of :data:`~lynxsim.arm.geometry.LYNX_ARM` without its input checks.
+
+    For callers that solve many small batches of targets they made themselves
+    (the envs' tool action): the same closed form and choice as :func:`ik` (the
+    same joints, bit for bit), without the checks and bookkeeping that dominate
+    its cost on a few targets.
+
+    Args:
+        position: Finite tool points, shape (n, 3) [m].
+        pitch: Finite tool pitches, shape (n,) [rad].
+        roll: Finite wrist rolls, shape (n,) [rad].
+        q_ref: Reference joints, shape (n, 5) [rad]: the valid candidate nearest wins.
+
+    Returns:
+        The joints, shape (n, 5) [rad] (NaN where there are none), and the
+        :class:`IKStatus` codes, shape (n,) int8 (OK, OUT_OF_REACH or JOINT_RANGE).
+    """
+    _, in_reach, valid, q = _solve(position, pitch, roll, q_ref, LYNX_ARM)
+    status = np.where(
+        in_reach,
+        np.where(valid.any(axis=0), IKStatus.OK, IKStatus.JOINT_RANGE),
+        IKStatus.OUT_OF_REACH,
+    ).astype(np.int8)
+    return q, status
 
 
 def ik_candidates(

@@ -46,6 +46,7 @@ def _plan(args: argparse.Namespace) -> int:
             robot,
             task,
             planner=args.planner,
+            search_world=args.search_world,
             margin_m=args.margin_mm * 1e-3,
             seed=args.seed,
             time_limit_s=args.time_limit_s,
@@ -111,8 +112,9 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     """Add the ``plan`` sub-command."""
     p = sub.add_parser(
         "plan",
-        help="plan a collision-free motion through a task's poses (OMPL)",
-        description="Plan the task's poses in order around its obstacles (joint space, OMPL, "
+        help="plan a collision-free motion through a task's poses",
+        description="Plan the task's poses in order around its obstacles (joint space, "
+        "compiled RRT-Connect on a sphere cover or OMPL, "
         "clearance margin kept by every configuration), shorten, time within the servo limits "
         "(Ruckig) and check the timed motion clear; write its samples and a plot of the tool "
         "path among the obstacles.",
@@ -120,10 +122,19 @@ def register(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p.add_argument("task", type=Path, help="arm task file (TOML), e.g. tasks/three_obstacles.toml")
     p.add_argument(
         "--planner",
-        default="RRTConnect",
+        default="compiled",
         metavar="NAME",
-        help="OMPL planner: RRTConnect (default), RRT, RRTstar, BITstar, ... "
+        help="compiled (default: RRT-Connect and shortcutting compiled on the robot's sphere "
+        "cover) or an OMPL planner: RRTConnect, RRT, RRTstar, BITstar, ... "
         "(a wrong name lists them all)",
+    )
+    p.add_argument(
+        "--search-world",
+        choices=("cover", "exact"),
+        default="cover",
+        help="where the search checks configurations: the robot's sphere cover (default; "
+        "never more optimistic than the exact checker) or MuJoCo's exact checker; the timed "
+        "motion is checked exactly either way",
     )
     p.add_argument(
         "--margin-mm",

@@ -31,6 +31,7 @@ __all__ = [
     "INFO_PATH",
     "LYNXSIM_PATH",
     "MIB",
+    "RAW_VIDEO_BYTES",
     "STATS_PATH",
     "STAT_NAMES",
     "TASKS_PATH",
@@ -49,6 +50,8 @@ DATA_FILES_SIZE_IN_MB = 100
 VIDEO_FILES_SIZE_IN_MB = 200
 """LeRobot's limit of a video file, declared in info.json (lynxsim's files stay far below)."""
 MIB = 1024**2
+RAW_VIDEO_BYTES = 2_000 * MIB
+"""Raw RGB bytes of one camera's frames in a video file (encoded: about 1 % of it at 84 x 84)."""
 _FILE = "chunk-{chunk_index:03d}/file-{file_index:03d}"
 DATA_PATH = f"data/{_FILE}.parquet"
 VIDEO_PATH = "videos/{video_key}/" + f"{_FILE}.mp4"
@@ -136,6 +139,11 @@ class LeRobotLayout:
         cameras: ``(camera, feature key)`` of the image features, in channel order.
         videos: Images as MP4 videos, else PNG in the parquet files.
         task: The one task's text (the first line of the env class's docstring).
+        chunks_size: Files per chunk folder.
+        file_bytes: A data (or episodes) file is closed before an episode would
+            take it past this, uncompressed (info.json declares it in MiB).
+        raw_video_bytes: Likewise for a video file, in raw frames, per camera.
+        parquet_options: The parquet writer's options.
     """
 
     fps: int
@@ -143,6 +151,9 @@ class LeRobotLayout:
     cameras: tuple[tuple[str, str], ...]
     videos: bool
     task: str
+    chunks_size: int = CHUNKS_SIZE
+    file_bytes: int = DATA_FILES_SIZE_IN_MB * MIB
+    raw_video_bytes: int = RAW_VIDEO_BYTES
     parquet_options: Mapping[str, Any] = field(default_factory=lambda: dict(_PARQUET_OPTIONS))
 
     @classmethod
@@ -316,8 +327,8 @@ class LeRobotLayout:
             "total_episodes": episodes,
             "total_frames": frames,
             "total_tasks": 1,
-            "chunks_size": CHUNKS_SIZE,
-            "data_files_size_in_mb": DATA_FILES_SIZE_IN_MB,
+            "chunks_size": self.chunks_size,
+            "data_files_size_in_mb": -(-self.file_bytes // MIB),
             "video_files_size_in_mb": VIDEO_FILES_SIZE_IN_MB,
             "fps": self.fps,
             "splits": {"train": f"0:{episodes}"},

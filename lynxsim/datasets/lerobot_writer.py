@@ -29,7 +29,8 @@ returned. Per frame (``T`` per episode: the final observation is not a frame)::
 
 Files hold whole episodes; a new data file (and video files) starts when the
 next episode would take the data file past ``data_files_size_in_mb``
-(uncompressed) or the raw frames of a video past :data:`RAW_VIDEO_BYTES`.
+(uncompressed) or the raw frames of a video past
+:data:`~lynxsim.datasets.lerobot_meta.RAW_VIDEO_BYTES` (the layout's limits).
 Videos are H.264 at CRF 15 by lynxsim's encoder, at the images' own size and
 full colour resolution (yuv444p: at 32 x 32 px, yuv420p's half-resolution
 colour moved a pixel's red and blue by 5 to 9 levels on average); without
@@ -47,17 +48,13 @@ from pathlib import Path
 from types import ModuleType, TracebackType
 from typing import Any
 
-import gymnasium as gym
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.datasets.episode import Episode
 from lynxsim.datasets.lerobot_meta import (
-    CHUNKS_SIZE,
-    DATA_FILES_SIZE_IN_MB,
     DATA_PATH,
     EPISODES_PATH,
-    MIB,
     VIDEO_PATH,
     LeRobotLayout,
     write_meta,
@@ -66,10 +63,7 @@ from lynxsim.datasets.lerobot_stats import RunningStats, Stats, feature_stats, i
 from lynxsim.datasets.minari_writer import MissingExtraError
 from lynxsim.sim.video import FrameSink, mp4_writer
 
-__all__ = ["RAW_VIDEO_BYTES", "LeRobotWriter", "require_pyarrow"]
-
-RAW_VIDEO_BYTES = 2_000 * MIB
-"""Raw RGB bytes of one camera's frames in a video file (encoded, about 1 % of it at 84 x 84)."""
+__all__ = ["LeRobotWriter", "require_pyarrow"]
 
 
 def require_pyarrow() -> ModuleType:
@@ -106,19 +100,17 @@ class LeRobotWriter:
     Args:
         folder: An existing, empty folder (the temporary one of
             :func:`~lynxsim.fileio.atomic_folder`).
-        env: The env the episodes come from (its spaces, cameras and frame rate).
-        videos: Camera images as MP4 videos (True) or PNG in the parquet files.
+        layout: The features and limits (:meth:`LeRobotLayout.of_env` of the
+            env the episodes come from).
 
     Raises:
         MissingExtraError: pyarrow is not installed.
-        InvalidInputError: The env's frame rate is not a whole number of frames
-            per second.
     """
 
-    def __init__(self, folder: Path, env: gym.Env[Any, Any], videos: bool = True) -> None:
+    def __init__(self, folder: Path, layout: LeRobotLayout) -> None:
         self._pa = require_pyarrow()
         self._folder = folder
-        self.layout = LeRobotLayout.of_env(env, videos)
+        self.layout = layout
         self._stats = {key: RunningStats() for key in self.layout.features}
         self._group: tuple[int, int] = (0, 0)  # (chunk, file) of the current data/video files
         self._group_bytes = 0
@@ -153,7 +145,7 @@ class LeRobotWriter:
 
     def _next(self, group: tuple[int, int]) -> tuple[int, int]:
         chunk, file = group
-        return (chunk + 1, 0) if file == CHUNKS_SIZE - 1 else (chunk, file + 1)
+        return (chunk + 1, 0) if file == self.layout.chunks_size - 1 else (chunk, file + 1)
 
     def _path(self, template: str, group: tuple[int, int], **kw: str) -> Path:
         path = self._folder / template.format(chunk_index=group[0], file_index=group[1], **kw)
@@ -185,8 +177,8 @@ class LeRobotWriter:
         table = self._pa.table({key: arrays[key] for key in layout.features if key in arrays})
         raw = sum(f.nbytes for f in images.values()) if layout.videos else 0
         if self._group_frames and (
-            self._group_bytes + table.nbytes > DATA_FILES_SIZE_IN_MB * MIB
-            or self._group_raw + raw > RAW_VIDEO_BYTES * len(images)
+            self._group_bytes + table.nbytes > layout.file_bytes
+            or self._group_raw + raw > layout.raw_video_bytes * len(images)
         ):
             self._close_group()
             self._group = self._next(self._group)
@@ -234,7 +226,7 @@ class LeRobotWriter:
             )
 
         table = row()
-        if self._meta_rows and self._meta_bytes + table.nbytes > DATA_FILES_SIZE_IN_MB * MIB:
+        if self._meta_rows and self._meta_bytes + table.nbytes > self.layout.file_bytes:
             self._write_meta_file()
             self._meta_group = self._next(self._meta_group)
             table = row()  # it names its own file

@@ -31,7 +31,7 @@ from lynxsim.datasets.minari_writer import MinariWriter, require_minari, write_n
 from lynxsim.datasets.npz import NpzWriter
 from lynxsim.envs.evaluation import make_policy
 from lynxsim.envs.noise import action_noise_std, check_noise, noise_generator
-from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
+from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID, make_env
 from lynxsim.errors import InvalidInputError, InvalidTypeError, short
 from lynxsim.fileio import atomic_folder, check_new_folder
 
@@ -169,11 +169,11 @@ def write_dataset(
     pixels: dict[str, Any] = {}
     if images:
         pixels = {"pixels": tuple(images), "pixel_width": image_size, "pixel_height": image_size}
-    env = gym.make(env_id, **pixels)
+    env = make_env(env_id, **pixels)
     spec = env.spec if env.spec is not None else gym.spec(env_id)
     try:
-        if fmt is DatasetFormat.LEROBOT:
-            LeRobotLayout.of_env(env, videos)  # refuses what it cannot store, before any write
+        # LeRobot's features, made before any write (it refuses what it cannot store)
+        layout = LeRobotLayout.of_env(env, videos) if fmt is DatasetFormat.LEROBOT else None
         std = action_noise_std(env.action_space, noise)
         policy = make_policy("expert", env)
         description = (
@@ -184,7 +184,7 @@ def write_dataset(
         steps = successes = collisions = 0
         with (
             atomic_folder(dest, NEW_FOLDER_HINT) as tmp,
-            _writer(fmt, tmp, env, dataset_id, description, videos) as w,
+            _writer(fmt, tmp, env, dataset_id, description, layout) as w,
         ):
             for i in range(episodes):
                 episode = record_episode(env, policy, seed + i, std, noise_generator(seed + i))
@@ -212,12 +212,12 @@ def _writer(
     env: gym.Env[Any, Any],
     dataset_id: str,
     description: str,
-    videos: bool,
+    layout: LeRobotLayout | None,
 ) -> _Writer:
     if fmt is DatasetFormat.NPZ:
         return NpzWriter(folder)
-    if fmt is DatasetFormat.LEROBOT:
-        return LeRobotWriter(folder, env, videos)
+    if layout is not None:
+        return LeRobotWriter(folder, layout)
     return MinariWriter(folder, env, dataset_id, description)
 
 

@@ -25,6 +25,7 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
+from lynxsim.envs.commanding import READY_TOOL_POSE, make_controller
 from lynxsim.envs.config import (
     CollisionCheck,
     EnvConfig,
@@ -39,13 +40,13 @@ from lynxsim.envs.control import (
     TargetStatus,
     ToolSpaceController,
 )
-from lynxsim.envs.episodes import WORK_CLEARANCE_M, WorkColumn, draw_point, draw_scene, workable
+from lynxsim.envs.episodes import WORK_CLEARANCE_M, WorkColumn
 from lynxsim.envs.randomization import Domain, Randomization
 from lynxsim.envs.reward import GoalRewards, RewardType, goal_distance, goal_reward
-from lynxsim.envs.tool_action import ToolLimits, ToolRollController
-from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD, PolarRegion
+from lynxsim.envs.scene_draw import SceneDrawing
+from lynxsim.envs.tool_action import ToolRollController
+from lynxsim.envs.workspace import GRIP_ROLL_RAD
 from lynxsim.errors import (
-    InfeasibleSceneError,
     InvalidInputError,
     LynxsimError,
     NonFiniteInputError,
@@ -54,7 +55,6 @@ from lynxsim.inputs import real_array
 from lynxsim.scene import REPORT_CUBE, Obstacle, Scene
 from lynxsim.sim.arm.env_scene import EnvScene
 from lynxsim.sim.arm.randomizer import ModelRandomizer
-from lynxsim.sim.arm.slots import ObstacleSlots
 from lynxsim.sim.arm.task import GRIPPER_OPEN_M
 from lynxsim.sim.collision import CollisionChecker
 from lynxsim.sim.env_render import RENDER_MODES, EnvRenderer, PixelRenderer, check_frame
@@ -74,18 +74,8 @@ FloatArray = npt.NDArray[np.float64]
 Obs = dict[str, npt.NDArray[Any]]
 """An observation: float64 arrays, and a uint8 ``"pixels"`` array with image observations."""
 
-READY_TOOL_POSE = (0.18, 0.0, 0.08, TOP_DOWN_PITCH_RAD)
-"""Tool point (x, y, z) [m] and pitch [rad] of the arm at reset: 18 cm in front of
-the base, 8 cm above the base plane, gripper pointing down."""
 
-_TARGET_BOX_LOWER = (-0.30, -0.45, -0.004)
-"""Lower corner of the tool-target box [m]; z keeps the fingertips (8 mm past the
-tool point) above the table top (z = -12.5 mm) when the gripper points down."""
-_TARGET_BOX_UPPER = (0.45, 0.45, 0.50)
-_MAX_JOINT_JUMP_RAD = 0.5
-
-
-class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
+class LynxArmEnv(SceneDrawing, GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
     """Base of the arm envs (see :class:`~lynxsim.envs.PickAndPlaceEnv` for the manual).
 
     Args are keyword-only, ``gym.make``'s kwargs, with the defaults of the
@@ -194,7 +184,7 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self._randomizer = ModelRandomizer(
             self.model, self.data, self._arm_act, self._arm_dof, self.ids.cube_geom, REPORT_CUBE
         )
-        self._controller = self._make_controller(config)
+        self._controller = make_controller(config)
         n_act = (4 if self.control is ControlMode.TOOL else 5) + int(self._GRIPPER_ACTION)
         self._n_act = n_act
         self.action_space = gym.spaces.Box(-1.0, 1.0, shape=(n_act,), dtype=np.float32)
@@ -221,47 +211,6 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         self._set_goal(np.zeros(3))
         self._tool_now: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self._check_feasible()
-
-    def _check_feasible(self) -> None:
-        """Refuse options that can never produce an episode.
-
-        Raises:
-            InfeasibleSceneError: The fixed obstacles block a region the task draws
-                from, or no goal there lies outside ``distance_threshold``.
-        """
-        raise NotImplementedError
-
-    def _refuse(self, what: str) -> None:
-        raise InfeasibleSceneError(
-            f"{type(self).__name__} with obstacles={self._obstacles!r} and distance_threshold="
-            f"{self.distance_threshold} m can never draw an episode: {what}"
-        )
-
-    @staticmethod
-    def _make_controller(config: EnvConfig) -> ToolSpaceController | JointSpaceController:
-        """What turns the configured actions into servo targets."""
-        if config.control is ControlMode.TOOL_ROLL:
-            return ToolRollController(
-                ToolLimits(
-                    config.position_step,
-                    config.pitch_step,
-                    config.roll_step,
-                    _TARGET_BOX_LOWER,
-                    _TARGET_BOX_UPPER,
-                    max_joint_jump=_MAX_JOINT_JUMP_RAD,
-                )
-            )
-        if config.control is ControlMode.TOOL:
-            return ToolSpaceController(
-                config.position_step,
-                config.pitch_step,
-                GRIP_ROLL_RAD,
-                _TARGET_BOX_LOWER,
-                _TARGET_BOX_UPPER,
-                max_joint_jump=_MAX_JOINT_JUMP_RAD,
-                fallback=config.target_fallback,
-            )
-        return JointSpaceController(config.joint_step)
 
     # ----------------------------------------------------------------- setup
 
@@ -290,11 +239,6 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
     def domain(self) -> Domain:
         """The episode's physical parameters: drawn at reset with randomisation, else nominal."""
         return self._randomizer.domain
-
-    @property
-    def obstacles(self) -> tuple[Obstacle, ...]:
-        """The obstacles of the episode (drawn at reset with ``random_obstacles``)."""
-        return self._obstacles
 
     @property
     def scene(self) -> Scene:
@@ -372,55 +316,6 @@ class LynxArmEnv(GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
         if self.render_mode == "human":
             self.render()
         return obs, self._info(obs, False, TargetStatus.ACCEPTED, held=False)
-
-    def _sample_task(self) -> None:
-        """Place the cube (in ``data.qpos``) and set the goal, drawing from ``np_random``."""
-        raise NotImplementedError
-
-    def _work_columns(self) -> list[WorkColumn]:
-        """Where the arm works in the episode drawn (default: at the goal, empty-handed)."""
-        return [WorkColumn(self._goal.copy(), float(self._goal[2]), False)]
-
-    def _sample_scene(self, slots: ObstacleSlots) -> None:
-        """Draw the task, then obstacles that leave the arm room to work (:func:`draw_scene`)."""
-        assert self.random_obstacles is not None
-
-        def place(obstacles: Sequence[Obstacle]) -> None:
-            slots.place(obstacles)
-            self._obstacles = tuple(obstacles)
-
-        def task() -> list[WorkColumn]:
-            self._sample_task()
-            return self._work_columns()
-
-        ready = READY_TOOL_POSE[:3]
-        draw_scene(self.np_random, self.random_obstacles, ready, task, place, self._workable)
-
-    def _workable(self, columns: list[WorkColumn]) -> bool:
-        """Whether the ready pose and every work column keep :data:`WORK_CLEARANCE_M`.
-
-        A column starts no lower than the tool target box's floor: a small cube's
-        centre lies below it, and the tool goes no lower than the floor (which
-        keeps the fingertips above the table) to grasp it or put it down.
-        """
-        floor = _TARGET_BOX_LOWER[2]
-        raised = [
-            c._replace(point=np.array([c.point[0], c.point[1], max(float(c.point[2]), floor)]))
-            for c in columns
-        ]
-        return workable(self._checker, self._q_ready, raised)
-
-    def _draw_point(
-        self, region: PolarRegion, away_from: npt.ArrayLike | None = None
-    ) -> FloatArray:
-        """A point of ``region`` reachable top-down, clear of the obstacles (:func:`draw_point`).
-
-        ``away_from``: a point, shape (3,) [m], that the drawn one must be more
-        than ``distance_threshold`` away from.
-        """
-        return draw_point(
-            self.np_random, region, self.obstacles, away_from, self.distance_threshold
-        )
 
     # --------------------------------------------------------------- step
 

@@ -20,7 +20,7 @@ from lynxsim.envs.expert import PickAndPlaceExpert, ReachExpert
 from lynxsim.envs.noise import action_noise_std, add_noise, noise_generator
 from lynxsim.envs.pick_and_place import PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
-from lynxsim.envs.registration import PICK_AND_PLACE_ID
+from lynxsim.envs.registration import PICK_AND_PLACE_ID, make_env
 from lynxsim.errors import InvalidInputError
 from lynxsim.sim.video import FrameSink, mp4_writer
 
@@ -260,7 +260,7 @@ def evaluate(
     kwargs: dict[str, Any] = {"collision_check": "physics_step", **(env_kwargs or {})}
     if video is not None:
         kwargs["render_mode"] = "rgb_array"
-    env = gym.make(env_id, **kwargs)
+    env = make_env(env_id, **kwargs)
     try:
         agent = make_policy(policy, env, seed)
         stats = []
@@ -317,7 +317,7 @@ def record_expert_episode(
         "camera": camera,
         "render_quality": quality,
     }
-    env = gym.make(env_id, **kwargs)
+    env = make_env(env_id, **kwargs)
     try:
         with mp4_writer(dest, float(env.metadata["render_fps"])) as sink:
             return run_episode(env, make_policy("expert", env), seed, sink=sink)

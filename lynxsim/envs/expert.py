@@ -37,9 +37,14 @@ import numpy as np
 import numpy.typing as npt
 
 from lynxsim.angles import quat_yaw
-from lynxsim.arm import ik_nearest
-from lynxsim.envs.base import LynxArmEnv
-from lynxsim.envs.control import ToolSpaceController
+from lynxsim.envs.expert_moves import (
+    across_along,
+    grasp_roll,
+    per_axis,
+    pitch_for,
+    straight,
+    tool_env,
+)
 from lynxsim.envs.pick_and_place import CUBE_HALF_SIZE_M, PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
 from lynxsim.envs.routes import (
@@ -48,12 +53,9 @@ from lynxsim.envs.routes import (
     Planner,
     Point,
     Pose,
-    braking,
-    toward,
 )
 from lynxsim.envs.tool_action import ToolRollController
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
-from lynxsim.errors import InvalidInputError
 
 __all__ = ["PickAndPlaceExpert", "ReachExpert"]
 
@@ -87,9 +89,6 @@ _CENTRED_ALONG_M = 0.005
 _PRESS_M = 0.006
 """A plunging command goes at most this far below the tool point [m]: a finger that
 lands on the cube presses it no harder (hard presses tip it over)."""
-_SNAP_M = 0.005
-"""Short moves correct an error up to this [m] in one step, braking or not: noisy
-actions push the command a few millimetres every step."""
 _PRE_GRASP_WAIT = 20
 """Steps the centring may take before the expert plunges anyway."""
 _PLUNGE_STEPS = 6
@@ -101,8 +100,6 @@ _MAX_WAIT_STEPS = 15
 """Steps to wait at most for the arm to settle."""
 _HOVER_M = 0.05
 """Height of the tool above the cube before it descends [m]."""
-_PITCH_SEARCH_RAD = np.linspace(TOP_DOWN_PITCH_RAD, math.pi / 2, 61)
-"""Pitches tried, in order, when the gripper cannot point straight down at a point [rad]."""
 _GRIP_CLOSE_STEPS = 6
 """Steps the gripper gets to close before the lift."""
 _IN_HAND_M = 0.02
@@ -118,8 +115,6 @@ _DOWN_M = 0.004
 """A cube within this of its resting height [m] may be let go."""
 _PLACE_ABOVE_M = 0.002
 """The cube is let go this high above its resting height [m]."""
-_QUARTER_RAD = 0.5 * math.pi
-"""A cube looks the same turned by a quarter turn about the vertical [rad]."""
 _JITTER_MEMORY = 0.9
 """Weight of the past in the running mean of the command's squared jitter [-]."""
 _JITTER_MARGIN = 2.5
@@ -131,75 +126,6 @@ _BESIDE_ALONG_M = 0.007
 (18 mm wide on a 25 mm cube)."""
 _PRESSED_M = 0.004
 """A cube this far below its resting height is pressed into the table by a finger [m]."""
-
-
-def _tool_env(
-    env: gym.Env[Any, Any], kind: type[LynxArmEnv]
-) -> tuple[LynxArmEnv, ToolSpaceController]:
-    u = env.unwrapped
-    if not isinstance(u, kind):
-        raise InvalidInputError(f"this expert drives a {kind.__name__}, got {type(u).__name__}")
-    if not isinstance(u.controller, ToolSpaceController):
-        raise InvalidInputError(
-            f"the expert needs control='tool', the env has control={u.control.value!r}"
-        )
-    return u, u.controller
-
-
-def _straight(
-    cmd: Pose, dest: Pose, controller: ToolSpaceController, speed: float = 1.0
-) -> tuple[list[float], bool]:
-    """:func:`toward` with braking: for the short straight moves at the cube and the goal.
-
-    The last :data:`_SNAP_M` are taken in one step.
-    """
-    distance = math.dist(cmd[:3], dest[:3])
-    snap = min(distance, _SNAP_M) / controller.position_step
-    return toward(cmd, dest, controller, max(braking(distance, speed), snap))
-
-
-def _per_axis(cmd: Pose, dest: Pose, controller: ToolSpaceController) -> list[float]:
-    """Arm action (4 values) towards ``dest``, each axis as far as one step allows."""
-    steps = (*(controller.position_step,) * 3, controller.pitch_step)
-    return [max(-1.0, min(1.0, (dest[i] - cmd[i]) / steps[i])) for i in range(4)]
-
-
-def _across_along(dx: float, dy: float, azimuth: float) -> tuple[float, float]:
-    """A horizontal offset (dx, dy) [m] along the fingers' closing axis and across it.
-
-    The gripper, pointing down, closes along the arm's vertical plane (azimuth
-    ``azimuth`` [rad], the base joint's angle).
-    """
-    c, s = math.cos(azimuth), math.sin(azimuth)
-    return dx * c + dy * s, dy * c - dx * s
-
-
-def _grasp_roll(base: float, yaw: float, roll: float) -> float:
-    """The wrist roll that closes the fingers (pointing down) across faces of a cube [rad].
-
-    The fingers close along the azimuth ``base - (roll - GRIP_ROLL_RAD)``; the roll
-    chosen puts it on a face normal (``yaw`` plus a multiple of a quarter turn),
-    the nearest the roll ``roll`` now unless that is more than 3/16 of a turn from
-    :data:`GRIP_ROLL_RAD` (then a quarter turn back): a cube turned by about an
-    eighth of a turn does not make the choice flip from step to step.
-    """
-    closing = base - (roll - GRIP_ROLL_RAD)
-    turn = (closing - yaw + 0.5 * _QUARTER_RAD) % _QUARTER_RAD - 0.5 * _QUARTER_RAD
-    new = roll + turn
-    if new - GRIP_ROLL_RAD > 0.75 * _QUARTER_RAD:
-        new -= _QUARTER_RAD
-    elif GRIP_ROLL_RAD - new > 0.75 * _QUARTER_RAD:
-        new += _QUARTER_RAD
-    return new
-
-
-def _pitch_for(point: Point, q_ref: FloatArray) -> float:
-    """Pitch for a tool point: straight down if the IK reaches it so, else the nearest that does."""
-    for pitch in _PITCH_SEARCH_RAD:
-        status, _ = ik_nearest(*point, float(pitch), GRIP_ROLL_RAD, q_ref.tolist())
-        if status == 0:
-            return float(pitch)
-    return TOP_DOWN_PITCH_RAD
 
 
 class _Phase(enum.Enum):
@@ -243,7 +169,7 @@ class PickAndPlaceExpert:
     """
 
     def __init__(self, env: gym.Env[Any, Any]) -> None:
-        u, controller = _tool_env(env, PickAndPlaceEnv)
+        u, controller = tool_env(env, PickAndPlaceEnv)
         self._controller = controller
         self._rolls = isinstance(controller, ToolRollController)
         self._planner = Planner(u, controller)
@@ -304,7 +230,7 @@ class PickAndPlaceExpert:
         self, cmd: Pose, tool: Point, q_cmd: FloatArray, dest: Point, *, grasped: bool
     ) -> tuple[list[float], bool]:
         """A planned move to ``dest``, the gripper pointing down if the IK reaches it so."""
-        pose = (*dest, _pitch_for(dest, q_cmd))
+        pose = (*dest, pitch_for(dest, q_cmd))
         return self._mover.step(cmd, tool, q_cmd, pose, grasped=grasped)
 
     def __call__(self, observation: dict[str, FloatArray]) -> npt.NDArray[np.float32]:
@@ -342,19 +268,19 @@ class PickAndPlaceExpert:
         elif phase is _Phase.ALIGN:
             # Above the cube, fingertips clear of its top, until centred over it.
             point = (cube[0], cube[1], cube[2] + align)
-            arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), c, _SLOW)
+            arm, at = straight(cmd, (*point, pitch_for(point, q_cmd)), c, _SLOW)
             if self._rolls:
                 yaw = quat_yaw(*o[ix["cube_quaternion"]].tolist())
-                self._roll_grasp = _grasp_roll(float(q_cmd[0]), yaw, self._roll_grasp)
+                self._roll_grasp = grasp_roll(float(q_cmd[0]), yaw, self._roll_grasp)
                 at = at and abs(self._roll_grasp - self._roll_now) < ARRIVED_RAD
-            across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
+            across, along = across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
             centred = (
                 abs(across) < _CENTRED_ACROSS_M
                 and abs(along) < _CENTRED_ALONG_M
                 and abs(tool[2] - point[2]) < _AROUND_M
             )
             if self._rolls:  # the command too: the next step starts from it
-                across_cmd, along_cmd = _across_along(cmd[0] - cube[0], cmd[1] - cube[1], closing)
+                across_cmd, along_cmd = across_along(cmd[0] - cube[0], cmd[1] - cube[1], closing)
                 centred = (
                     centred
                     and abs(across_cmd) < _CENTRED_ACROSS_M
@@ -375,9 +301,9 @@ class PickAndPlaceExpert:
             if self._rolls:  # the press limit counts from where the fingertips reach the top
                 press_from = min(press_from, base + self._align - _ALIGN_ABOVE_TOP_M)
             dive = (*point[:2], max(point[2], press_from - _PRESS_M))
-            arm = _per_axis(cmd, (*dive, _pitch_for(point, q_cmd)), c)
+            arm = per_axis(cmd, (*dive, pitch_for(point, q_cmd)), c)
             if self._rolls:  # the pads are wide: an offset along them does no harm
-                across, along = _across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
+                across, along = across_along(tool[0] - cube[0], tool[1] - cube[1], closing)
                 beside = abs(across) < _AROUND_M and abs(along) < _BESIDE_ALONG_M
             else:
                 beside = math.dist(tool[:2], cube[:2]) < _AROUND_M
@@ -385,7 +311,7 @@ class PickAndPlaceExpert:
             if around:
                 self._enter(_Phase.GRASP)
                 self._hold_at = point_pose = (cmd[0], cmd[1], point[2], TOP_DOWN_PITCH_RAD)
-                arm, _ = _straight(cmd, point_pose, c, _SLOW)
+                arm, _ = straight(cmd, point_pose, c, _SLOW)
             elif (
                 self._count > _PLUNGE_STEPS
                 or (self._count >= 1 and tool[2] - base > self._on_top)
@@ -393,7 +319,7 @@ class PickAndPlaceExpert:
             ):  # landed on the cube or beside it: up and again
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.GRASP:  # close, holding the arm where the grasp began
-            arm, _ = _straight(cmd, self._hold_at, c, _SLOW)
+            arm, _ = straight(cmd, self._hold_at, c, _SLOW)
             grip = -1.0
             if self._count >= _GRIP_CLOSE_STEPS:
                 if self._gripped[0] <= opening <= self._gripped[1]:
@@ -402,12 +328,12 @@ class PickAndPlaceExpert:
                     self._enter(_Phase.REOPEN)
         elif phase is _Phase.REOPEN:
             point = (cmd[0], cmd[1], cube[2] + align)
-            arm, _ = _straight(cmd, (*point, cmd[3]), c, _SLOW)
+            arm, _ = straight(cmd, (*point, cmd[3]), c, _SLOW)
             if self._count >= _REOPEN_STEPS:
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.LIFT:
             # Straight up from where the grasp began (noisy actions must not walk it off).
-            arm, at = _straight(cmd, (*self._hold_at[:2], CARRY_HEIGHT_M, cmd[3]), c)
+            arm, at = straight(cmd, (*self._hold_at[:2], CARRY_HEIGHT_M, cmd[3]), c)
             grip = -1.0
             if at and (settled or near or self._count > _MAX_WAIT_STEPS):
                 if in_hand:
@@ -420,13 +346,13 @@ class PickAndPlaceExpert:
             if not in_hand:
                 self._enter(_Phase.APPROACH)
         elif phase is _Phase.RELEASE:  # open, holding the arm where the cube was put down
-            arm, _ = _straight(cmd, self._hold_at, c, _SLOW)
+            arm, _ = straight(cmd, self._hold_at, c, _SLOW)
             opened = opening > self._opened
             if self._count >= _RELEASE_STEPS and (opened or self._count > _MAX_WAIT_STEPS):
                 self._enter(_Phase.RETREAT)
         elif phase is _Phase.RETREAT:  # straight up (a jerk up drags the cube along the fingers)
             above = (*self._hold_at[:2], goal[2] + _HOVER_M, cmd[3])  # where it was let go
-            arm, _ = _straight(cmd, above, c, _SLOW)
+            arm, _ = straight(cmd, above, c, _SLOW)
             # Knocked off the goal: again (a cube still within the success radius is
             # left alone: picking it up again would risk more than it can win).
             if math.dist(cube, goal) > self._threshold:
@@ -465,7 +391,7 @@ class PickAndPlaceExpert:
         over = (goal[0] - off[0], goal[1] - off[1])
         if phase is _Phase.PLACE:
             point = (*over, goal[2] + _PLACE_ABOVE_M - off[2])
-            arm, at = _straight(cmd, (*point, _pitch_for(point, q_cmd)), self._controller, _SLOW)
+            arm, at = straight(cmd, (*point, pitch_for(point, q_cmd)), self._controller, _SLOW)
             down = cube[2] - goal[2] < _DOWN_M  # the cube (almost) rests on the table
             on_goal = math.dist(cube[:2], goal[:2]) < _ON_GOAL_M
             if (
@@ -478,7 +404,7 @@ class PickAndPlaceExpert:
                 return [0.0, 0.0, 0.0, 0.0], 1.0
             return arm, -1.0
         point = (*over, goal[2] - off[2])  # HOLD: follow the cube's offset in the hand
-        arm, _ = _straight(cmd, (*point, _pitch_for(point, q_cmd)), self._controller)
+        arm, _ = straight(cmd, (*point, pitch_for(point, q_cmd)), self._controller)
         return arm, -1.0
 
 
@@ -496,7 +422,7 @@ class ReachExpert:
     """
 
     def __init__(self, env: gym.Env[Any, Any]) -> None:
-        u, controller = _tool_env(env, ReachEnv)
+        u, controller = tool_env(env, ReachEnv)
         self._controller = controller
         self._roll_step = (
             controller.roll_step if isinstance(controller, ToolRollController) else 0.0
@@ -522,7 +448,7 @@ class ReachExpert:
         cmd: Pose = (x, y, z, float(o[ix["commanded_tool_pitch"]][0]))
         q_cmd = o[ix["commanded_joint_angles"]]
         goal: Point = tuple(observation["desired_goal"].tolist())
-        dest = (*goal, _pitch_for(goal, q_cmd))
+        dest = (*goal, pitch_for(goal, q_cmd))
         tool: Point = tuple(o[ix["tool_position"]].tolist())
         arm, _ = self._mover.step(cmd, tool, q_cmd, dest, grasped=False)
         if self._roll_step:

@@ -9,6 +9,9 @@ so the math packages stay free of Gymnasium.
 
 from __future__ import annotations
 
+import warnings
+from typing import Any
+
 import gymnasium as gym
 
 __all__ = [
@@ -19,6 +22,7 @@ __all__ = [
     "REACH_ID",
     "REACH_V2_ID",
     "V2_ENV_IDS",
+    "make_env",
     "register_envs",
 ]
 
@@ -72,3 +76,22 @@ def register_envs() -> None:
                 max_episode_steps=steps,
                 kwargs=dict(kwargs),
             )
+
+
+def make_env(env_id: str, **kwargs: Any) -> gym.Env[Any, Any]:
+    """``gym.make(env_id, **kwargs)`` without Gymnasium's "out of date" notice.
+
+    lynxsim's commands and library functions choose an env version on purpose (a dataset
+    of ``-v1`` stays ``-v1``); Gymnasium would otherwise print a deprecation line on
+    stderr whenever a newer version is registered.
+
+    Args:
+        env_id: A registered id, e.g. ``"LynxPickAndPlace-v1"``.
+        **kwargs: The env's options, as ``gym.make`` takes them.
+
+    Returns:
+        The env, wrapped by ``gym.make`` (time limit, order enforcing, checker).
+    """
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*is out of date", category=DeprecationWarning)
+        return gym.make(env_id, **kwargs)

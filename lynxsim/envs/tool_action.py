@@ -3,9 +3,10 @@
 A ``-v2`` tool action moves the commanded tool target ``(x, y, z, pitch, roll)``
 (tool point [m], tool pitch and wrist roll [rad]) by ``action * step``. The
 request is clipped to a box, the pitch range and the roll joint's range, then
-solved by the analytic IK (:func:`lynxsim.arm.ik`, the solution nearest the
-current command). A request the controller cannot take (out of reach, outside
-the joint ranges, or a solution more than ``max_joint_jump`` from the current
+solved by the analytic IK (:func:`lynxsim.arm.ik`'s closed form and choice,
+:func:`lynxsim.arm.ik.ik_unchecked`: the solution nearest the current
+command). A request the controller cannot take (out of reach, outside the
+joint ranges, or a solution more than ``max_joint_jump`` from the current
 command: a configuration flip) goes to the **nearest feasible target**, in
 action units (position / ``position_step``, pitch / ``pitch_step``); the roll
 never limits the reach and is always taken.
@@ -17,14 +18,15 @@ The nearest target is searched among candidates, all at once:
   of the reach at that pitch (closed form: the wrist point drawn radially onto
   the sphere the upper arm and forearm reach, which for a fixed pitch is the
   exact nearest reachable point, :func:`reach_projection`);
-- the current point at the requested pitch;
+- the current point at the requested pitch, and the current target itself;
 - the result of a damped Gauss-Newton search in joint space from the current
   command, within the joint ranges and the jump limit (where the joint
   ranges, not the reach, bound the request).
 
 A candidate the controller rejects is replaced by the farthest feasible point
 on the segment to it from the current target (bisection; the current target
-is feasible). The candidate nearest the request wins: the target slides along
+is feasible), unless no point of that segment is nearer the request than the
+best feasible candidate. The candidate nearest the request wins: the target slides along
 the reach boundary and the joint and pitch limits instead of stopping. Tested
 against brute force (``tests/envs/test_tool_action.py``): no feasible target
 among 20,000 sampled around a request is nearer than the result by more than
@@ -46,7 +48,8 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, ik, jacobian, tool_pose
+from lynxsim.arm import LYNX_ARM, jacobian, tool_pose
+from lynxsim.arm.ik import ik_unchecked
 from lynxsim.envs.control import TargetFallback, TargetStatus, ToolSpaceController
 from lynxsim.errors import InvalidInputError
 
@@ -64,14 +67,18 @@ StatusArray = npt.NDArray[np.int8]
 
 PITCH_OFFSETS = np.linspace(-2.0, 2.0, 17)
 """Pitches tried around the requested one, in pitch steps (a quarter step apart)."""
-_BISECTIONS = 12
-"""Halvings of the search along a segment for its farthest feasible point (1/4096)."""
+_BISECTIONS = 8
+"""Halvings of the search along a segment for its farthest feasible point (1/256)."""
 _REACH_MARGIN_M = 1e-9
 """A point projected onto the reach boundary lies this far inside it [m]."""
 _DESCENT_STEPS = 20
 """Damped Gauss-Newton steps of the search in joint space."""
 _DAMPING = 1e-3
 """Initial Levenberg-Marquardt damping [(action units / rad)^2]."""
+_CONVERGED = 1e-10
+"""A search step that brings the squared miss down by less [action units^2] ends it."""
+_MAX_DAMPING = 1e6
+"""A search whose damping grew past this (steps kept failing) ends [-]."""
 _INSIDE = 1e-9
 """Relative margin inside the joint ranges and the jump limit of the joint-space search."""
 
@@ -96,7 +103,8 @@ class ToolLimits:
         box_lower: Lower corner of the box the tool point is clipped to, (3,) [m].
         box_upper: Upper corner, (3,) [m].
         pitch_range: ``(min, max)`` tool pitch [rad].
-        roll_range: ``(min, max)`` wrist roll [rad] (default: the roll joint's range).
+        roll_range: ``(min, max)`` wrist roll [rad] (default: the roll joint's range,
+            0 to just under 2 pi, which the IK would wrap to 0).
         max_joint_jump: Largest change of joints q1..q4 in one step [rad], > 0.
 
     Raises:
@@ -109,7 +117,7 @@ class ToolLimits:
     box_lower: tuple[float, float, float]
     box_upper: tuple[float, float, float]
     pitch_range: tuple[float, float] = (-math.pi / 2, math.pi / 2)
-    roll_range: tuple[float, float] = (LYNX_ARM.q_min[4], LYNX_ARM.q_max[4])
+    roll_range: tuple[float, float] = (LYNX_ARM.q_min[4], math.nextafter(LYNX_ARM.q_max[4], 0.0))
     max_joint_jump: float = 0.5
 
     def __post_init__(self) -> None:
@@ -164,9 +172,7 @@ def _solve(
     points: FloatArray, q_ref: FloatArray, max_jump: float
 ) -> tuple[FloatArray, StatusArray]:
     """Joints of targets (n, 5) nearest ``q_ref`` (n, 5), and the controller's status (n,)."""
-    result = ik(points[:, :3], points[:, 3], points[:, 4], q_ref=q_ref)
-    status = result.status.astype(np.int8)
-    q = result.q
+    q, status = ik_unchecked(points[:, :3], points[:, 3], points[:, 4], q_ref)
     jumped = (status == TargetStatus.ACCEPTED) & (np.abs(q[:, :4] - q_ref[:, :4]) > max_jump).any(
         axis=1
     )
@@ -266,8 +272,11 @@ def _descend(
     error = (request[:, :4] - _pose(q)) * w
     cost = np.einsum("ij,ij->i", error, error)
     damping = np.full(m, _DAMPING)
+    done = np.zeros(m, dtype=bool)
     eye = np.eye(4)
     for _ in range(_DESCENT_STEPS):
+        if done.all():
+            break
         jac = jacobian(q)[:, :, :4] * w[:, None]
         free = np.ones((m, 4), dtype=bool)
         for _ in range(2):  # solve, hold the bounded variables that would leave, solve again
@@ -280,13 +289,16 @@ def _descend(
         trial[:, :4] = np.clip(q[:, :4] + dq, lo, hi)
         # Into the pitch range by the wrist (pitch = q2 + q3 + q4), else rejected.
         bent = trial[:, 1] + trial[:, 2]
-        wrist = np.clip(pitch_lo, bent + trial[:, 3], pitch_hi) - bent
+        wrist = np.clip(bent + trial[:, 3], pitch_lo, pitch_hi) - bent
         trial[:, 3] = np.clip(wrist, lo[:, 3], hi[:, 3])
         pitch = bent + trial[:, 3]
         trial_error = (request[:, :4] - _pose(trial)) * w
         trial_cost = np.einsum("ij,ij->i", trial_error, trial_error)
         trial_cost[(pitch < pitch_lo) | (pitch > pitch_hi)] = np.inf
-        better = trial_cost < cost
+        better = (trial_cost < cost) & ~done
+        # A row is done (and left alone: rows never depend on each other) when a step
+        # gains next to nothing or the damping has grown past any useful step.
+        done |= (better & (cost - trial_cost < _CONVERGED)) | (damping > _MAX_DAMPING)
         q[better] = trial[better]
         error[better] = trial_error[better]
         cost = np.where(better, trial_cost, cost)
@@ -310,7 +322,7 @@ def _nearest(
     projected = np.clip(
         reach_projection(raw, flat_pitch), limits.box_lower, limits.box_upper
     ).reshape(m, p, 3)
-    cand = np.empty((m, 2 * p + 2, 5))
+    cand = np.empty((m, 2 * p + 3, 5))
     cand[:, :p, :3] = raw.reshape(m, p, 3)
     cand[:, p : 2 * p, :3] = projected
     cand[:, : 2 * p, 3] = np.tile(pitches, 2)
@@ -319,18 +331,37 @@ def _nearest(
     cand[:, :, 4] = request[:, None, 4]
     descended, _ = _descend(q_cmd, request, limits)
     cand[:, 2 * p + 1, :4] = np.clip(descended[:, :4], limits.lower[:4], limits.upper[:4])
+    cand[:, 2 * p + 2, :4] = current[:, :4]  # feasible: the fallback
     k = cand.shape[1]
     flat = cand.reshape(-1, 5)
     starts = np.repeat(current, k, axis=0)
     refs = np.repeat(q_cmd, k, axis=0)
     q, status = _solve(flat, refs, limits.max_joint_jump)
-    bad = np.flatnonzero(status != TargetStatus.ACCEPTED)
+    scale = limits.steps[:4]
+    wanted = np.repeat(request, k, axis=0)[:, :4] / scale
+    miss = np.linalg.norm(flat[:, :4] / scale - wanted, axis=1)
+    ok = status == TargetStatus.ACCEPTED
+    # The best feasible miss of each row so far (the current target is feasible) ...
+    best = np.minimum(
+        np.linalg.norm((current[:, :4] - request[:, :4]) / scale, axis=1),
+        np.where(ok, miss, np.inf).reshape(m, k).min(axis=1),
+    )
+    # ... and a rejected candidate is searched only if its segment can come nearer.
+    start, end = starts[:, :4] / scale, flat[:, :4] / scale
+    span = end - start
+    along = np.einsum("ij,ij->i", wanted - start, span) / np.maximum(
+        np.einsum("ij,ij->i", span, span), 1e-300
+    )
+    closest = start + np.clip(along, 0.0, 1.0)[:, None] * span
+    bound = np.linalg.norm(closest - wanted, axis=1)
+    bad = np.flatnonzero(~ok & (bound < np.repeat(best, k)))
     if bad.size:
         starts_bad = starts[bad].copy()
         starts_bad[:, 4] = flat[bad, 4]  # the roll is always taken
         flat[bad], q[bad] = _farthest(starts_bad, flat[bad], refs[bad], limits.max_joint_jump)
-    scale = limits.steps[:4]
-    miss = np.linalg.norm(((flat[:, :4] - np.repeat(request, k, axis=0)[:, :4]) / scale), axis=1)
+        ok[bad] = True
+        miss[bad] = np.linalg.norm(flat[bad, :4] / scale - wanted[bad], axis=1)
+    miss[~ok] = np.inf
     pick = np.argmin(miss.reshape(m, k), axis=1) + np.arange(m) * k
     return flat[pick], q[pick]
 

@@ -74,6 +74,7 @@ def plan_through(
     max_repairs: int = DEFAULT_MAX_REPAIRS,
     progress: ProgressCallback | None = None,
     pose_names: Sequence[str] | None = None,
+    search_oracle: ClearanceOracle | None = None,
 ) -> PlannedMotion:
     """Plan every segment of a task in turn, then time the whole motion.
 
@@ -92,7 +93,7 @@ def plan_through(
         lipschitz: ``L`` [m/rad]: no point of the robot moves more than
             ``L ||dq||_2`` (the arm's: :func:`lynxsim.arm.motion.arm_lipschitz`).
         margin_m: Clearance margin [m].
-        planner: OMPL planner of every segment.
+        planner: Planner of every segment (``compiled`` needs a cover as ``search_oracle``).
         time_limit_s: Search time limit per segment [s].
         seed: Seeds the run; same inputs and seed give the same trajectory.
         shortcuts: Shortcut attempts per segment.
@@ -105,6 +106,9 @@ def plan_through(
             when timing starts and when all is done.
         pose_names: Names of the start and the goals, for the trajectory's
             waypoints (see :func:`~lynxsim.plan.timing.time_paths`).
+        search_oracle: The world the searches run in (a robot's sphere cover,
+            never more optimistic than ``oracle``); default ``oracle``. Start
+            and goals, and the timed motion, are checked in ``oracle``.
 
     Returns:
         The :class:`PlannedMotion`.
@@ -153,6 +157,7 @@ def plan_through(
             started,
             i,
             count,
+            search_oracle,
         )
         plans.append(plan)
         here = plan.path[-1]
@@ -170,6 +175,7 @@ def plan_through(
         labels=names,
         max_repairs=max_repairs,
         pose_names=pose_names,
+        screen=search_oracle,
     )
     if progress is not None:
         progress(PlanProgress(count, count, "", "done", time.perf_counter() - started))

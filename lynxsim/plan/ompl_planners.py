@@ -35,9 +35,10 @@ from ompl import util as ou
 from lynxsim.plan.errors import UnknownPlannerError
 from lynxsim.plan.oracle import FloatArray
 
-__all__ = ["PLANNERS", "PlannerName", "check_planner", "solve"]
+__all__ = ["COMPILED", "OMPL_PLANNERS", "PLANNERS", "PlannerName", "check_planner", "solve"]
 
 PlannerName = Literal[
+    "compiled",
     "RRTConnect",
     "RRT",
     "RRTstar",
@@ -48,7 +49,9 @@ PlannerName = Literal[
     "FMT",
     "BFMT",
 ]
-"""OMPL geometric planners selectable by name.
+"""The planners selectable by name: ``compiled`` (RRT-Connect and its shortcutting
+compiled on a sphere cover, :mod:`lynxsim.plan.cover.search`), then OMPL's
+geometric planners.
 
 Left out: PRM and PRMstar, which check for a solution in a second thread that
 calls the Python edge check while the solving thread holds the GIL (a
@@ -59,6 +62,12 @@ _THREADED = ("PRM", "PRMstar", "LazyPRM", "LazyPRMstar", "SPARS", "SPARStwo")
 
 PLANNERS: tuple[str, ...] = get_args(PlannerName)
 """The selectable planner names, in the order listed by errors."""
+
+COMPILED: Literal["compiled"] = "compiled"
+"""The compiled planner's name (it needs a cover world)."""
+
+OMPL_PLANNERS: tuple[str, ...] = PLANNERS[1:]
+"""OMPL's planners among them."""
 
 MAX_SEED = 2**32 - 2
 """Largest seed [-]; OMPL's seed is an unsigned 32-bit number above zero (seed + 1)."""

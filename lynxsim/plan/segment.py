@@ -1,8 +1,18 @@
-"""Planning one segment: OMPL finds a clear path, shortcuts shorten it, a check verifies it.
+"""Planning one segment: a planner finds a clear path, shortcuts shorten it, a check verifies it.
 
 The planner works in a joint box with a :class:`~lynxsim.plan.oracle.ClearanceOracle`.
 Every state it keeps has clearance ``>= margin`` and every edge it accepts is
 certified by :func:`~lynxsim.plan.edges.check_edges` to keep ``>= margin / 2``.
+
+The search may run in a second world, a robot's sphere cover
+(:class:`~lynxsim.plan.cover.CoverOracle`), whose clearances are never above
+the exact ones: a path certified on it is certified in the exact world. The
+``compiled`` planner searches and shortens on the cover in one compiled call
+(:func:`~lynxsim.plan.cover.search.search_cover`); where the cover is too
+pessimistic for it (start or goals without the margin on the cover, or no path
+within its sample budget), OMPL's RRT-Connect plans the segment in the exact
+world instead. Start and goals are always checked in the exact world (its
+errors are today's).
 """
 
 from __future__ import annotations
@@ -15,9 +25,11 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.inputs import number_in_range
+from lynxsim.plan.cover.oracle import CoverOracle
+from lynxsim.plan.cover.search import DIRECT, FOUND
 from lynxsim.plan.edges import check_edges, check_path
 from lynxsim.plan.errors import NoPathError, PlanningError, clearance_text
-from lynxsim.plan.ompl_planners import MAX_SEED, PlannerName, check_planner, solve
+from lynxsim.plan.ompl_planners import COMPILED, MAX_SEED, PlannerName, check_planner, solve
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.plan.problem import Problem, make_problem
 from lynxsim.plan.progress import PlanProgress, ProgressCallback
@@ -59,6 +71,8 @@ class SegmentPlan:
         min_clearance_m: Smallest clearance at the points checked along ``path`` [m].
         clearance_bound_m: Certified lower bound of the clearance everywhere along
             ``path`` [m], ``>= margin / 2``.
+        checks: Configurations the compiled search checked (0 for another planner).
+        search_time_s: Time of the compiled search and shortening [s] (0 for another).
     """
 
     path: FloatArray
@@ -71,6 +85,8 @@ class SegmentPlan:
     length_rad: float
     min_clearance_m: float
     clearance_bound_m: float
+    checks: int = 0
+    search_time_s: float = 0.0
 
 
 def check_seed(seed: object) -> int:
@@ -291,6 +307,7 @@ def plan_problem(
     started: float,
     index: int = 0,
     count: int = 1,
+    search_oracle: ClearanceOracle | None = None,
 ) -> SegmentPlan:
     """Plan a checked problem with settings from :func:`check_search`; see :func:`plan_segment`.
 
@@ -305,25 +322,42 @@ def plan_problem(
         started: ``time.perf_counter()`` when the run began [s].
         index: The segment's index in the run, for progress reports.
         count: Segments of the run, for progress reports.
+        search_oracle: The world the search runs in (default ``oracle``); the
+            ``compiled`` planner needs a :class:`~lynxsim.plan.cover.CoverOracle`.
+
+    Raises:
+        InvalidInputError: The ``compiled`` planner without a cover.
     """
     p = problem
     segment_started = time.perf_counter()
     _report(progress, PlanProgress(index, count, p.label, "planning", segment_started - started))
+    if planner == COMPILED:
+        if not isinstance(search_oracle, CoverOracle):
+            raise InvalidInputError("the compiled planner searches a cover: give a CoverOracle")
+        plan = _compiled(p, search_oracle, seed, shortcuts, segment_started)
+        if plan is not None:
+            _report(
+                progress,
+                PlanProgress(index, count, p.label, "done", time.perf_counter() - started),
+            )
+            return plan
+        planner, search_oracle = "RRTConnect", oracle  # the cover is too pessimistic here
+    world = oracle if search_oracle is None else search_oracle
     rng = np.random.default_rng(seed)
-    direct = direct_goal(p, oracle)
+    direct = direct_goal(p, world)
     if direct is not None:
         raw = np.array([p.start, p.goals[direct]])
         found = "direct"
     else:
 
         def state_ok(q: FloatArray) -> bool:
-            return bool(query(oracle, q[None], p.grasped)[0] >= p.margin_m)
+            return bool(query(world, q[None], p.grasped)[0] >= p.margin_m)
 
         def motion_ok(a: FloatArray, b: FloatArray) -> bool:
             verdict = check_edges(
                 a[None],
                 b[None],
-                oracle,
+                world,
                 lipschitz=p.lipschitz,
                 margin_m=p.margin_m,
                 grasped=p.grasped,
@@ -346,7 +380,7 @@ def plan_problem(
         raw, found = path, planner
     plan = finish_segment(
         p,
-        oracle,
+        world,
         raw,
         planner=found,
         started=started,
@@ -359,3 +393,49 @@ def plan_problem(
     )
     _report(progress, PlanProgress(index, count, p.label, "done", time.perf_counter() - started))
     return plan
+
+
+def _compiled(
+    problem: Problem, cover: CoverOracle, seed: int, shortcuts: int, started: float
+) -> SegmentPlan | None:
+    """The compiled planner's segment on the cover, or None where the cover cannot plan it."""
+    p = problem
+    found = cover.search(
+        p.start,
+        p.goals[p.valid_goals],
+        p.lower,
+        p.upper,
+        lipschitz=p.lipschitz,
+        margin_m=p.margin_m,
+        grasped=p.grasped,
+        seed=seed,
+        shortcuts=shortcuts,
+    )
+    if found.status not in (FOUND, DIRECT):
+        return None
+    path = np.array(found.path)
+    goal_index = int(p.valid_goals[found.goal_index])
+    path[0], path[-1] = p.start, p.goals[goal_index]  # exact ends (they are, bit for bit)
+    verdict = check_path(path, cover, lipschitz=p.lipschitz, margin_m=p.margin_m, grasped=p.grasped)
+    if not verdict.clear.all():
+        bad = int(np.flatnonzero(~verdict.clear)[0])
+        raise PlanningError(
+            f"internal error: edge {bad + 1} of the compiled path failed its final check "
+            f"(clearance {float(verdict.min_clearance_m[bad]):.4g} m)",
+            label=p.label,
+        )
+    path.setflags(write=False)
+    return SegmentPlan(
+        path=path,
+        goal_index=goal_index,
+        planner="direct" if found.status == DIRECT else COMPILED,
+        grasped=p.grasped,
+        label=p.label,
+        planning_time_s=time.perf_counter() - started,
+        raw_length_rad=path_length(found.raw),
+        length_rad=path_length(path),
+        min_clearance_m=float(verdict.min_clearance_m.min()),
+        clearance_bound_m=float(verdict.bound_m.min()),
+        checks=found.checks,
+        search_time_s=found.search_time_s,
+    )

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan.errors import PlanningError, TimingClearanceError
@@ -107,6 +108,50 @@ class _Verdict:
     worst_t: float  # when the smallest clearance occurs, from the chunk's start [s]
 
 
+def _screened(
+    q: FloatArray,
+    oracle: ClearanceOracle,
+    screen: ClearanceOracle,
+    grasped: bool,
+    margin_m: float,
+    step_m: float,
+) -> FloatArray:
+    """The exact clearances of ``q`` (N, n) wherever the verdict, minimum or bound need them.
+
+    ``screen`` never exceeds ``oracle``: a sample whose screened clearance is at
+    least half the margin passes exactly too, and the smallest clearance and the
+    bound ``(c_i + c_{i+1} - step) / 2`` are found by asking ``oracle`` only for
+    the samples (and neighbours) whose screened values could be at or below the
+    best exact ones (branch and bound). Every sample not asked keeps its lower
+    bound, above the minimum, so the verdict, minimum and bound are those of
+    ``oracle`` on every sample.
+    """
+    low = query(screen, q, grasped)
+    c = low.copy()
+    known = np.zeros(len(q), dtype=bool)
+
+    def ask(index: npt.NDArray[np.intp]) -> None:
+        index = index[~known[index]]
+        if index.size:
+            c[index] = query(oracle, q[index], grasped)
+            known[index] = True
+
+    first = int(np.argmin(0.5 * (low[:-1] + low[1:] - step_m)))
+    ask(np.concatenate([np.flatnonzero(low < 0.5 * margin_m), [int(np.argmin(low))],
+                        [first, first + 1]]).astype(np.intp))  # fmt: skip
+    while True:
+        best = c[known].min() if known.any() else np.inf
+        pair = 0.5 * (c[:-1] + c[1:] - step_m)
+        both = known[:-1] & known[1:]
+        best_pair = pair[both].min() if both.any() else np.inf
+        need = np.flatnonzero(~known & (c <= best))
+        pairs = np.flatnonzero(~both & (pair <= best_pair))
+        wanted = np.unique(np.concatenate([need, pairs, pairs + 1]))
+        if not (~known[wanted]).any():
+            return c
+        ask(wanted)
+
+
 def _check_chunk(
     chunk: _Chunk,
     oracle: ClearanceOracle,
@@ -114,13 +159,19 @@ def _check_chunk(
     speed: float,
     lipschitz: float,
     margin_m: float,
+    screen: ClearanceOracle | None = None,
 ) -> _Verdict:
     traj = chunk.trajectory
     duration = traj.duration
     n = max(2, math.ceil(duration * speed * lipschitz / (0.5 * margin_m)) + 1)
     t = np.linspace(0.0, duration, n)
-    c = query(oracle, traj.sample(t).q, grasped)
     d = speed * duration / (n - 1)
+    q = traj.sample(t).q
+    c = (
+        query(oracle, q, grasped)
+        if screen is None
+        else _screened(q, oracle, screen, grasped, margin_m, lipschitz * d)
+    )
     bound = float(np.min(0.5 * (c[:-1] + c[1:] - lipschitz * d)))
     bad = c < 0.5 * margin_m
     edges = np.searchsorted(traj.waypoint_times, t[bad], side="right") - 1
@@ -165,6 +216,7 @@ def time_paths(
     labels: Sequence[str] | None = None,
     max_repairs: int = DEFAULT_MAX_REPAIRS,
     pose_names: Sequence[str] | None = None,
+    screen: ClearanceOracle | None = None,
 ) -> TimedMotion:
     """Time planned paths with Ruckig and check the timed motion clear (see the module).
 
@@ -183,6 +235,10 @@ def time_paths(
         pose_names: Names of the poses the paths join (one more than paths): the
             trajectory's waypoints keep them, and the vertices between are named
             ``v1``, ``v2``, ... (default: ``P1``, ``P2``, ... for every vertex).
+        screen: A world never more optimistic than ``oracle`` (a robot's sphere
+            cover): ``oracle`` is asked only about the samples whose screened
+            clearance could decide the verdict, the smallest clearance or the
+            bound, which all come out as ``oracle`` alone gives them.
 
     Returns:
         The :class:`TimedMotion`.
@@ -217,7 +273,7 @@ def time_paths(
     while True:
         chunks = _chunks(work, stops, bounds, limits)
         verdicts = [
-            _check_chunk(ch, oracle, bool(grasped[ch.path]), speed, lipschitz, margin_m)
+            _check_chunk(ch, oracle, bool(grasped[ch.path]), speed, lipschitz, margin_m, screen)
             for ch in chunks
         ]
         failing = [(ch, v) for ch, v in zip(chunks, verdicts) if v.failing]

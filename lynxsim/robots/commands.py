@@ -26,6 +26,7 @@ from lynxsim.traj.motion import Motion
 if TYPE_CHECKING:
     from lynxsim.plan import PlannedMotion, PlannerName, ProgressCallback
     from lynxsim.sim.adapter import RealBackend, SimAdapter
+    from lynxsim.sim.planning import SearchWorld
 
 __all__ = ["motion", "plan", "real_backend", "simulation", "with_capability"]
 
@@ -79,7 +80,8 @@ def plan(
     robot: Robot,
     task: Task,
     *,
-    planner: PlannerName = "RRTConnect",
+    planner: PlannerName = "compiled",
+    search_world: SearchWorld = "cover",
     margin_m: float = DEFAULT_MARGIN_M,
     seed: int = 0,
     time_limit_s: float = 5.0,
@@ -90,7 +92,10 @@ def plan(
     Args:
         robot: The task's robot (it plans: :attr:`Robot.planning`).
         task: The task (its scene gives the obstacles).
-        planner: OMPL planner (:data:`lynxsim.plan.PLANNERS`).
+        planner: ``compiled`` (RRT-Connect compiled on the robot's sphere cover,
+            the default) or an OMPL planner (:data:`lynxsim.plan.PLANNERS`).
+        search_world: Where the search runs: ``cover`` (default) or ``exact``
+            (the MuJoCo checker); the timed motion is checked exactly either way.
         margin_m: Clearance to keep from every obstacle [m].
         seed: Same task and seed give the same trajectory, bit for bit.
         time_limit_s: Search time per segment [s].
@@ -116,6 +121,7 @@ def plan(
         request,
         simulation(robot).checker(task.scene),
         planner=planner,
+        search_world=search_world,
         margin_m=margin_m,
         seed=seed,
         time_limit_s=time_limit_s,

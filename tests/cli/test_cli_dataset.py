@@ -137,7 +137,7 @@ def test_sigterm_leaves_no_dataset(tmp_path, fmt):
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 143
     assert err == "lynxsim: terminated\n"
-    assert _tree(tmp_path) == []  # no partial dataset, and no folder made for it, left
+    assert _tree(tmp_path) == []  # nor the folders it made for the dataset
 
 
 _TOKENS = [

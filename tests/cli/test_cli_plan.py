@@ -22,7 +22,7 @@ def test_plan_prints_segments_and_writes_samples_and_plot(cli, tmp_path):
     ]
     assert all(s["min_clearance_m"] >= 0.01 for s in report["segments"])
     assert all(s["timed_min_clearance_m"] >= 0.005 for s in report["segments"])
-    assert {s["planner"] for s in report["segments"]} <= {"direct", "RRTConnect"}
+    assert {s["planner"] for s in report["segments"]} <= {"direct", "compiled", "RRTConnect"}
     samples = np.loadtxt(report["samples"], delimiter=",", skiprows=1)
     assert samples.shape[1] == 1 + 4 * 5 + 3 + 1
     assert samples[-1, 0] <= report["duration_s"]
@@ -37,9 +37,18 @@ def test_plan_table_at_the_terminal(cli, tmp_path):
     result = cli("plan", str(TASKS / "obstacle_avoidance.toml"), "--out-dir", str(tmp_path))
     assert result.code == 0, result.err
     lines = result.out.splitlines()
-    assert lines[0].startswith("obstacle_avoidance: planned with RRTConnect, margin 10 mm, seed 0")
+    assert lines[0].startswith("obstacle_avoidance: planned with compiled, margin 10 mm, seed 0")
     assert lines[1].split()[:3] == ["segment", "found", "by"]
     assert len(lines) == 2 + 5 + 2  # header, 5 segments, two "wrote" lines
+
+
+def test_plan_with_ompl_on_the_exact_checker(cli, tmp_path):
+    result = cli("plan", str(TASKS / "obstacle_avoidance.toml"), "--planner", "RRTConnect",
+                 "--search-world", "exact", "--out-dir", str(tmp_path), "--json")  # fmt: skip
+    assert result.code == 0, result.err
+    report = json.loads(result.out)
+    assert report["planner"] == "RRTConnect"
+    assert {s["planner"] for s in report["segments"]} <= {"direct", "RRTConnect"}
 
 
 def test_unknown_planner_lists_the_planners(cli, tmp_path):

@@ -101,6 +101,7 @@ def _check_info(info: dict[str, Any]) -> None:
         assert features[key] == spec, key
     has_video = False
     for key, ft in features.items():
+        assert "/" not in key, key  # LeRobot refuses it: "/" separates the stats/ columns
         assert set(ft) <= {"dtype", "shape", "names", "info"}, key
         assert ft["dtype"] in {"float32", "float64", "int64", "bool", "video", "image"}, key
         assert all(isinstance(s, int) and s > 0 for s in ft["shape"]), key

@@ -4,18 +4,17 @@ from __future__ import annotations
 
 import json
 import os
-import resource
-import signal
 import subprocess
 import sys
 
-import gymnasium as gym
 import numpy as np
 import pytest
 
 from lynxsim.datasets import MissingExtraError, read_npz, write_dataset
+from lynxsim.envs.registration import make_env
 from lynxsim.errors import InvalidInputError, InvalidTypeError, LynxsimError
 from tests.datasets.conftest import NOISE, SEED, record
+from tests.helpers import full_disk
 
 pytest.importorskip("pyarrow")  # the extra lynxsim[datasets] (CI installs it)
 
@@ -67,7 +66,7 @@ def test_a_fifty_episode_dataset_has_lerobots_documented_layout(fifty):
     dataset = validate(summary.path)
     assert dataset.info["total_episodes"] == SCHEMA_EPISODES == summary.episodes
     assert dataset.info["total_frames"] == sum(e.steps for e in episodes) == summary.steps
-    assert dataset.info["fps"] == gym.make("LynxPickAndPlace-v1").metadata["render_fps"]
+    assert dataset.info["fps"] == make_env("LynxPickAndPlace-v1").metadata["render_fps"]
     assert dataset.info["video_path"] is None
     assert sorted(p.name for p in (summary.path / "meta").iterdir()) == [
         "episodes",
@@ -242,30 +241,21 @@ def test_the_check_finds_a_truncated_video_and_a_missing_episode(tmp_path):
         check_lerobot(summary.path)
 
 
-def _full_disk(limit_bytes: int):
-    def limit() -> None:
-        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # EFBIG instead of death, like ENOSPC
-        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
-
-    return limit
-
-
 @pytest.mark.parametrize(
     ("argv", "limit_bytes"),
-    [
-        ([], 20_000),  # the data file
+    [  # state only: tests/datasets/test_full_disk.py
         (["--images", "--image-size", "32"], 20_000),  # the video (ffmpeg inherits the limit)
         (["--images", "--image-size", "32", "--no-videos"], 20_000),  # PNG in the data file
     ],
-    ids=["state", "video", "png"],
+    ids=["video", "png"],
 )
-def test_a_full_disk_is_one_line_and_leaves_no_dataset(tmp_path, argv, limit_bytes):
+def test_a_full_disk_with_images_is_one_line_and_leaves_no_dataset(tmp_path, argv, limit_bytes):
     cmd = [sys.executable, "-m", "lynxsim", "dataset", "--format", "lerobot", "--episodes", "3"]
     proc = subprocess.run(
         [*cmd, *argv, "--out-dir", str(tmp_path), "--quiet"],
         capture_output=True,
         text=True,
-        preexec_fn=_full_disk(limit_bytes),
+        preexec_fn=full_disk(limit_bytes),
         timeout=300,
         env={**os.environ, "MUJOCO_GL": "egl"},
     )
@@ -291,3 +281,44 @@ def test_the_printed_command_names_the_loading_script(tmp_path):
         lines[3] == f"  load with        python examples/load_lerobot.py {folder}  (needs lerobot)"
     )
     validate(folder)
+
+
+@pytest.mark.parametrize(
+    ("file_bytes", "raw_video_bytes", "files"),
+    [
+        (20_000, 10**9, [(0, 0), (0, 1), (1, 0), (1, 1), (2, 0)]),  # data files of one episode
+        (10**9, 160_000, [(0, 0), (0, 0), (0, 1), (0, 1), (1, 0)]),  # videos of two
+    ],
+    ids=["data-limit", "video-limit"],
+)
+def test_files_and_chunks_roll_over_at_the_limits(tmp_path, file_bytes, raw_video_bytes, files):
+    from dataclasses import replace
+
+    from lynxsim.datasets import action_noise_std, noise_generator, record_episode
+    from lynxsim.datasets.lerobot_meta import LeRobotLayout
+    from lynxsim.datasets.lerobot_writer import LeRobotWriter
+    from lynxsim.envs.evaluation import make_policy
+
+    env = make_env("LynxReach-v1", pixels=("front",), pixel_width=16, pixel_height=16)
+    layout = replace(
+        LeRobotLayout.of_env(env, videos=True),
+        chunks_size=2,
+        file_bytes=file_bytes,
+        raw_video_bytes=raw_video_bytes,
+    )
+    policy, std = make_policy("expert", env), action_noise_std(env.action_space, NOISE)
+    folder = tmp_path / "dataset"
+    folder.mkdir()
+    with LeRobotWriter(folder, layout) as writer:
+        for seed in range(SEED, SEED + len(files)):
+            writer.add(record_episode(env, policy, seed, std, noise_generator(seed)))
+        writer.finish({"first_seed": SEED})
+    env.close()
+    dataset = validate(folder)  # every file, index, video time and frame count
+    e = {k: dataset.episodes.column(k).to_pylist() for k in dataset.episodes.column_names}
+    key = "videos/observation.images.front"
+    assert list(zip(e["data/chunk_index"], e["data/file_index"], strict=True)) == files
+    assert list(zip(e[f"{key}/chunk_index"], e[f"{key}/file_index"], strict=True)) == files
+    assert dataset.info["chunks_size"] == 2
+    meta_files = sorted((folder / "meta/episodes").rglob("*.parquet"))
+    assert (len(meta_files) > 1) == (file_bytes < 10**9)  # a row's stats take ~10 kB

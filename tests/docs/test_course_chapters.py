@@ -38,3 +38,12 @@ def test_the_site_lists_the_chapter(chapter: Path) -> None:
     index = (COURSE / "index.md").read_text()
     assert f"course/{chapter.name}" in nav
     assert f"({chapter.name})" in index
+
+
+def test_the_site_build_executes_every_cell() -> None:
+    """CI's docs step counts the chapters the build ran: it must run them all, errors fatal."""
+    config = (COURSE.parents[1] / "mkdocs.yml").read_text()
+    plugin = config[config.index("- mkdocs-jupyter:") : config.index("- mkdocstrings:")]
+    for setting in ("execute: true", "allow_errors: false", "cache: false"):
+        assert setting in plugin
+    assert "execute_ignore" not in plugin

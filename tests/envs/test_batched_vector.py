@@ -286,3 +286,10 @@ def test_image_observations_of_the_batch_equal_each_envs_own(quality, side):
     assert not np.array_equal(pixels[0], pixels[1])
     batched.close()
     sync.close()
+
+
+def test_make_vec_without_a_mode_gives_the_batch():
+    env = gym.make_vec("LynxReach-v2", num_envs=2)
+    assert isinstance(env.unwrapped, LynxVectorEnv)
+    assert env.unwrapped.max_episode_steps == 100  # the registered time limit
+    env.close()

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from lynxsim.angles import quat_yaw
 from lynxsim.envs import PICK_AND_PLACE_V2_ID, REACH_V2_ID, PickAndPlaceExpert, evaluate
-from lynxsim.envs.expert import _grasp_roll
+from lynxsim.envs.expert_moves import grasp_roll
 from lynxsim.envs.workspace import GRIP_ROLL_RAD
 
 QUARTER = 0.5 * math.pi
@@ -28,7 +28,7 @@ def _off_quarter(angle: float) -> float:
 
 @given(st.floats(-1.5, 1.5), st.floats(-math.pi, math.pi), st.floats(math.pi - 1.1, math.pi + 1.1))
 def test_the_grasp_roll_puts_the_closing_axis_on_a_face_normal_near_the_held_roll(base, yaw, roll):
-    new = _grasp_roll(base, yaw, roll)
+    new = grasp_roll(base, yaw, roll)
     closing = base - (new - GRIP_ROLL_RAD)
     assert _off_quarter(closing - yaw) < 1e-9
     assert abs(new - GRIP_ROLL_RAD) <= 0.75 * QUARTER + 1e-9

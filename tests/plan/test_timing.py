@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lynxsim.arm.motion import ARM_BOUNDS, ARM_LIMITS
-from lynxsim.plan import PlanProgress, plan_through
+from lynxsim.plan import PlanProgress, plan_through, time_paths
 from lynxsim.traj import JointBounds, JointLimits, TrajectoryKind
 from lynxsim.traj.check import LIMIT_RTOL
 from tests.plan.worlds import LIPSCHITZ, LOWER_2D, MARGIN_M, UPPER_2D, WALL, Spheres
@@ -149,3 +149,36 @@ def test_a_robot_of_two_joints_is_planned_and_timed_with_its_own_bounds_and_limi
     assert WALL.clearance(s.q, grasped=False).min() >= 0.25 * MARGIN_M
     assert (np.abs(s.qd) <= 1.0 * (1.0 + LIMIT_RTOL)).all()
     np.testing.assert_allclose(s.q[0], [-0.5, 0.0], atol=1e-12)
+
+
+class _Lowered:
+    """A world never above BALL: its clearance less a fixed, varying amount."""
+
+    n_joints = 5
+
+    def clearance(self, q: np.ndarray, *, grasped: bool) -> np.ndarray:
+        exact = BALL.clearance(q, grasped=grasped)
+        return exact - 0.004 * (1.0 + np.sin(7.0 * q.sum(axis=1)))
+
+
+def test_a_screening_world_gives_the_same_timed_motion_for_fewer_exact_checks(motion):
+    result, _ = motion
+    paths = [s.path for s in result.segments]
+    grasped = [s.grasped for s in result.segments]
+
+    class Counting:
+        n_joints = 5
+        asked = 0
+
+        def clearance(self, q: np.ndarray, *, grasped: bool) -> np.ndarray:
+            Counting.asked += len(q)
+            return BALL.clearance(q, grasped=grasped)
+
+    plain = time_paths(paths, grasped, BALL, lipschitz=LIPSCHITZ, margin_m=MARGIN_M,
+                       bounds=ARM_BOUNDS, limits=ARM_LIMITS)  # fmt: skip
+    screened = time_paths(paths, grasped, Counting(), lipschitz=LIPSCHITZ, margin_m=MARGIN_M,
+                          bounds=ARM_BOUNDS, limits=ARM_LIMITS, screen=_Lowered())  # fmt: skip
+    assert screened.segments == plain.segments  # minimum, bound, samples, stops: all exact
+    t = np.linspace(0.0, plain.trajectory.duration, 501)
+    assert np.array_equal(screened.trajectory.sample(t).q, plain.trajectory.sample(t).q)
+    assert 0 < Counting.asked < sum(s.samples for s in plain.segments)

@@ -83,7 +83,7 @@ class EnvBatch:
         """
         if ids:
             self._batch.reset(np.asarray(ids, dtype=np.intp), stage=_NO_STAGE)
-        self._batch.set_models([s.model for s in self._scenes])
+            self._batch.set_models([s.model for s in self._scenes])
 
     def simulate(self, ids: Sequence[int], steps: int, *, every_step: bool) -> list[bool]:
         """Step scenes ``ids`` by ``steps`` physics steps from the state of their data.

@@ -159,6 +159,26 @@ class CollisionChecker:
         """Number of joints of a checked vector."""
         return len(self._adr)
 
+    @property
+    def qpos_adr(self) -> IntArray:
+        """``qpos`` addresses of the checked joints, (n,) (a copy)."""
+        return self._adr.copy()
+
+    @property
+    def base_qpos(self) -> FloatArray:
+        """The state of everything else, (nq,) (a copy)."""
+        return self._base.copy()
+
+    @property
+    def attach(self) -> tuple[int, int] | None:
+        """``(payload qpos address, site id)`` of the held payload, or None."""
+        return self._attach
+
+    @property
+    def cap_m(self) -> float:
+        """The checker's clearance cap [m]."""
+        return self._cap
+
     def check(self, q: npt.ArrayLike, *, grasped: bool = False) -> CollisionCheck:
         """Check joint vectors.
 
