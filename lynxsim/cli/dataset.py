@@ -10,7 +10,6 @@ from pathlib import Path
 from typing import Any
 
 from lynxsim.bounds import MAX_EPISODES
-from lynxsim.cli.flags import quiet_env_versions
 from lynxsim.cli.units import bounded_float, bounded_int, seed_int
 from lynxsim.datasets.layout import DatasetFormat, check_dataset_id
 from lynxsim.envs.noise import MAX_NOISE
@@ -30,8 +29,6 @@ def _dataset_id(text: str) -> str:
 
 def _run(args: argparse.Namespace) -> int:
     from tqdm import tqdm
-
-    quiet_env_versions()
 
     from lynxsim.datasets.episode import Episode
     from lynxsim.datasets.record import write_dataset

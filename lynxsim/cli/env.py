@@ -7,7 +7,6 @@ import sys
 from pathlib import Path
 
 from lynxsim.bounds import MAX_EPISODES, MAX_RANDOM_OBSTACLES
-from lynxsim.cli.flags import quiet_env_versions
 from lynxsim.cli.units import bounded_float, bounded_int, count_range, seed_int
 from lynxsim.envs.noise import MAX_NOISE
 from lynxsim.envs.registration import ENV_IDS, PICK_AND_PLACE_ID
@@ -20,8 +19,6 @@ RANDOMIZED_OBSTACLES = (1, 3)
 
 def _run(args: argparse.Namespace) -> int:
     from tqdm import tqdm
-
-    quiet_env_versions()
 
     from lynxsim.envs.evaluation import EpisodeStats, evaluate
 
