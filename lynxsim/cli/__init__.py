@@ -23,7 +23,7 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
     from types import FrameType
 
-__all__ = ["Terminated", "build_parser", "main", "on_sigterm", "run"]
+__all__ = ["Terminated", "build_parser", "interruption", "main", "on_sigterm", "run"]
 
 _EXIT_INTERRUPTED = 130
 _EXIT_TERMINATED = 128 + signal.SIGTERM
@@ -36,6 +36,20 @@ class Terminated(BaseException):
 def on_sigterm(signum: int, frame: FrameType | None) -> NoReturn:
     """The SIGTERM handler: raises :class:`Terminated`."""
     raise Terminated
+
+
+def interruption(exc: BaseException) -> KeyboardInterrupt | Terminated | None:
+    """The Ctrl-C or SIGTERM behind ``exc``, if any.
+
+    A signal that arrives while a native extension initialises (MuJoCo's) comes
+    back as ``ImportError: initialization failed`` caused by it.
+    """
+    seen: BaseException | None = exc
+    while seen is not None:
+        if isinstance(seen, KeyboardInterrupt | Terminated):
+            return seen
+        seen = seen.__cause__ or seen.__context__
+    return None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -69,7 +83,13 @@ def run() -> NoReturn:
     """
     signal.signal(signal.SIGTERM, on_sigterm)  # first: a signal from here on is one line
     try:
-        code = main()
+        try:
+            code = main()
+        except ImportError as exc:  # a signal while a native module initialised
+            found = interruption(exc)
+            if found is None:
+                raise
+            raise found from None
     except KeyboardInterrupt:  # before main's own handling began
         code = _EXIT_INTERRUPTED
         print("lynxsim: interrupted", file=sys.stderr)

@@ -13,7 +13,7 @@ import threading
 from collections.abc import Sequence
 from typing import Any, NoReturn
 
-from lynxsim.cli import Terminated, on_sigterm
+from lynxsim.cli import Terminated, interruption, on_sigterm
 from lynxsim.errors import LynxsimError
 
 __all__ = ["EXIT_ERROR", "EXIT_USAGE", "build_parser", "main"]
@@ -87,6 +87,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except Terminated:
         print("lynxsim: terminated", file=sys.stderr)
         return 128 + signal.SIGTERM
+    except ImportError as exc:  # a signal while a native module initialised (MuJoCo's)
+        found = interruption(exc)
+        if found is None:
+            raise
+        if isinstance(found, Terminated):
+            print("lynxsim: terminated", file=sys.stderr)
+            return 128 + signal.SIGTERM
+        print("lynxsim: interrupted", file=sys.stderr)
+        return 130
     finally:
         if in_main_thread:
             signal.signal(signal.SIGTERM, previous)

@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+
 import imageio.v2 as imageio
 import pytest
 
@@ -92,3 +96,21 @@ def test_env_scene_and_noise_flags_refuse_bad_values(capsys, flags, message):
     err = capsys.readouterr().err.strip()
     assert "\n" not in err
     assert message in err
+
+
+@pytest.mark.parametrize("command", ["env", "dataset"])
+def test_an_older_env_version_is_not_a_warning_on_stderr(tmp_path, command):
+    # The commands default to the -v1 envs; Gymnasium's note that a -v2 exists is not for
+    # the command line's stderr, whose errors are one line.
+    argv = ["env", "--episodes", "1", "--quiet", "--video", str(tmp_path / "x.avi")]
+    if command == "dataset":
+        argv = ["dataset", "--episodes", "1", "--quiet", "--out-dir", str(tmp_path / "d")]
+    proc = subprocess.run(
+        [sys.executable, "-m", "lynxsim", *argv],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env={**os.environ, "MUJOCO_GL": "egl"},
+    )
+    assert "Warning" not in proc.stderr, proc.stderr
+    assert len(proc.stderr.splitlines()) <= 1, proc.stderr
