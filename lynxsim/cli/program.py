@@ -7,10 +7,11 @@ Imported by :func:`lynxsim.cli.run` once its signal handlers are installed
 from __future__ import annotations
 
 import argparse
+import contextlib
 import signal
 import sys
 import threading
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from typing import Any, NoReturn
 
 from lynxsim.cli import Terminated, interruption, on_sigterm
@@ -52,9 +53,27 @@ class _OneLineParser(argparse.ArgumentParser):
         return super()._parse_optional(arg_string)
 
 
+@contextlib.contextmanager
+def _signals_deferred() -> Iterator[None]:
+    """Hold Ctrl-C and SIGTERM back until the block ends (then they arrive as usual).
+
+    The sub-commands import native extensions (MuJoCo, OMPL, Ruckig); a Python
+    exception raised by a signal inside such a module's C++ initialisation cannot
+    unwind through it and aborts the process (exit -6 with a C++ traceback). Blocked
+    at the OS level, the signal waits and is raised right after the imports.
+    """
+    deferred = {signal.SIGINT, signal.SIGTERM}
+    signal.pthread_sigmask(signal.SIG_BLOCK, deferred)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, deferred)
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The full argument parser with every sub-command."""
-    from lynxsim.cli import arm, dataset, demo, env, plan, play, real, rrr, sweep, traj, view
+    with _signals_deferred():
+        from lynxsim.cli import arm, dataset, demo, env, plan, play, real, rrr, sweep, traj, view
 
     parser = _OneLineParser(
         prog="lynxsim",
