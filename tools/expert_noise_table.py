@@ -1,4 +1,4 @@
-"""Print the README's success-vs-noise table of the scripted pick-and-place expert.
+"""Print the success-vs-noise table (docs/gym_envs.md) of the scripted pick-and-place expert.
 
 For each env id and each scene kind (the report's cylinder; ``random_obstacles=(1, 3)``)
 and each action noise (:mod:`lynxsim.envs.noise`), the expert runs seeded episodes

@@ -1,4 +1,4 @@
-"""Print the README's digital-twin table: every shipped arm task through the emulated SSC-32U.
+"""Print the digital-twin table (docs/real_arm.md): every shipped arm task through the SSC-32U twin.
 
 For each arm task of ``tasks/`` (its own trajectory type) and each stream (streamed
 every 100 ms at 9600 baud, the board's default; streamed every 20 ms at 115200 baud;
