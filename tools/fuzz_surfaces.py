@@ -19,7 +19,7 @@ The contract: a valid result, or a :class:`~lynxsim.errors.LynxsimError`.
 Anything else (an untyped exception, a partial file, rows that differ) is a
 finding: the script prints the counts and one line per finding, and exits 1::
 
-    python tools/fuzz_surfaces.py --inputs 2000 --seed 0
+    python -m tools.fuzz_surfaces --inputs 2000 --seed 0
 
 ``tests/fuzz/test_fuzz_surfaces.py`` drives the same targets with hypothesis.
 """
