@@ -101,6 +101,9 @@ def ray_head():
 
     Its temporary folder is its own and short (Ray's socket paths must fit in 107
     bytes), so that no other Ray instance of this machine finds it or is found.
+    ``GRPC_ENABLE_FORK_SUPPORT=0``, as docs/sweeps.md tells users: the Ray Client proxy forks
+    each client's server while gRPC threads run, and with gRPC's fork handlers that child
+    died at once in 4 of 8 tries here ("Starting Ray client server failed"); 0 of 14 without.
     """
     port, client = _free_port(), _free_port()
     temp = Path(tempfile.mkdtemp(prefix="lxray", dir="/tmp"))
@@ -116,7 +119,7 @@ def ray_head():
             stdout=out,
             stderr=subprocess.STDOUT,
             start_new_session=True,
-            env={**os.environ, **TOKEN},
+            env={**os.environ, **TOKEN, "GRPC_ENABLE_FORK_SUPPORT": "0"},
         )  # fmt: skip
     try:
         deadline = time.monotonic() + 180.0
