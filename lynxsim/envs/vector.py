@@ -249,17 +249,16 @@ class LynxVectorEnv(
         commands: dict[int, tuple[TargetStatus, bool]] = {}
         limit = self.max_episode_steps
 
-        def before(part: Sequence[int]) -> None:
-            if not self._roll:
-                for i in part:
-                    commands[i] = envs[i]._command(a[i])
-                return
-            values = [envs[i]._action_values(a[i]) for i in part]
-            controllers = [self._roll[i] for i in part]
+        if self._roll:  # the -v2 tool targets of all envs in one vectorised call
+            values = [envs[i]._action_values(a[i]) for i in going]
+            controllers = [self._roll[i] for i in going]
             targets = [c.target for c in controllers]
-            statuses = ToolRollController.apply_many(controllers, values)
-            for i, v, status, target in zip(part, values, statuses, targets, strict=True):
+            statuses = ToolRollController.apply_many(controllers, values) if going else []
+            for i, v, status, target in zip(going, values, statuses, targets, strict=True):
                 commands[i] = envs[i]._commanded(v, status, target)
+        else:
+            for i in going:
+                commands[i] = envs[i]._command(a[i])
 
         def after(part: Sequence[int], hits: list[bool]) -> None:
             for i, hit in zip(part, hits, strict=True):
@@ -273,7 +272,6 @@ class LynxVectorEnv(
             going,
             first.frame_skip,
             every_step=first._physics_step_contacts,
-            before=before,
             after=after,
             chunks=self._chunks,
         )

@@ -123,31 +123,28 @@ class EnvBatch:
         steps: int,
         *,
         every_step: bool,
-        before: Callable[[Sequence[int]], None],
         after: Callable[[Sequence[int], list[bool]], None],
         chunks: int,
     ) -> None:
         """:meth:`simulate` scenes ``ids`` in chunks, their Python work overlapping the stepping.
 
-        Each chunk is prepared by ``before`` (it writes the scenes' controls) in
-        this thread, then stepped by a helper thread (the GIL released while
-        MuJoCo steps) while this thread prepares the next chunk or hands the
-        stepped ones to ``after`` (with their contact verdicts), in order. Every
-        scene ends as :meth:`simulate` leaves it.
+        The scenes' controls are written beforehand (by the caller, for all of
+        them at once). A helper thread steps each chunk (the GIL released while
+        MuJoCo steps) while this thread hands the stepped ones to ``after``
+        (with their contact verdicts), in order. Every scene ends as
+        :meth:`simulate` leaves it.
 
         Args:
             ids: The scenes to step.
             steps: Physics steps.
             every_step: As :meth:`simulate`.
-            before: Called with each chunk's scenes before they are stepped.
             after: Called with each chunk's scenes and verdicts once stepped.
-            chunks: How many chunks (at most one per scene).
+            chunks: How many chunks (at most one per scene; 1: no helper thread).
         """
         size = -(-len(ids) // max(1, min(chunks, len(ids)))) if ids else 1
         parts = [list(ids[k : k + size]) for k in range(0, len(ids), size)]
         if len(parts) <= 1:
             for part in parts:
-                before(part)
                 after(part, self.simulate(part, steps, every_step=every_step))
             return
         if self._helper is None:
@@ -156,7 +153,6 @@ class EnvBatch:
         running: list[Future[list[bool]]] = []
         try:
             for part in parts:
-                before(part)
                 running.append(helper.submit(self.simulate, part, steps, every_step=every_step))
             for part, stepped in zip(parts, running, strict=True):
                 after(part, stepped.result())
