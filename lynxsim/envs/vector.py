@@ -68,9 +68,10 @@ class LynxVectorEnv(
             as ``gym.make``'s ``TimeLimit``.
         nthread: Threads stepping the physics, this one included (None: one per
             CPU).
-        chunks: Pieces a step is cut into, 1..num_envs: a helper thread steps each
-            natively while this thread prepares the next and finishes the stepped
-            ones (1: no overlap).
+        chunks: Pieces a step's physics is cut into, 1..num_envs: a helper thread
+            steps each natively while this thread finishes the stepped ones
+            (1: no overlap). The actions of all envs are turned into servo
+            targets before, in one go.
         **kwargs: The env's keyword arguments (every env gets the same);
             ``render_mode`` None or ``"rgb_array"``.
 

@@ -167,6 +167,19 @@ def test_quality_presets_choose_shadows_and_multisampling(quality, multisampling
     assert int(model.vis.quality.numslices) == 28  # the model's, put back after the context
 
 
+@pytest.mark.parametrize("quality", [Quality.LEAN, Quality.FAST], ids=lambda q: q.value)
+def test_only_the_lean_preset_leaves_the_floor_undrawn(quality):
+    model = load_arm_scene()
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    with SceneRenderer(model, RenderSettings(width=84, height=84, quality=quality)) as renderer:
+        frame = renderer.render(data)
+        scene = renderer._renderer.scene
+        planes = [g for g in scene.geoms[: scene.ngeom] if g.type == mujoco.mjtGeom.mjGEOM_PLANE]
+    assert len(planes) == (quality is not Quality.LEAN)
+    assert frame.std() > 20.0  # the table and the arm are drawn either way
+
+
 def test_a_fast_renderer_leaves_the_models_multisampling_to_later_renderers():
     model = load_arm_scene()
     samples = int(model.vis.quality.offsamples)
