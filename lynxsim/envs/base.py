@@ -15,7 +15,6 @@ and the observation is built from one ``tolist()`` of ``qpos`` and ``qvel``.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any, ClassVar, Literal
@@ -73,6 +72,23 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 Obs = dict[str, npt.NDArray[Any]]
 """An observation: float64 arrays, and a uint8 ``"pixels"`` array with image observations."""
+
+
+def clipped_actions(actions: FloatArray) -> list[list[float]]:
+    """Rows of actions, shape (N, A), clipped to [-1, 1], as lists (one per env).
+
+    The one check and clipping of an action: the single env calls it with N = 1,
+    the batched env with its N rows.
+
+    Raises:
+        NonFiniteInputError: A row holds NaN or infinity (the message shows it).
+    """
+    finite = np.isfinite(actions).all(axis=1)
+    if not finite.all():
+        row = actions[int(np.argmin(finite))].tolist()
+        raise NonFiniteInputError(f"action must be finite, got {row}")
+    rows: list[list[float]] = np.clip(actions, -1.0, 1.0).tolist()
+    return rows
 
 
 class LynxArmEnv(SceneDrawing, GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]]):
@@ -350,7 +366,10 @@ class LynxArmEnv(SceneDrawing, GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]
             InvalidInputError: As :meth:`step`.
             NonFiniteInputError: As :meth:`step`.
         """
-        values = self._action_values(action)
+        return self._command_values(self._action_values(action))
+
+    def _command_values(self, values: list[float]) -> tuple[TargetStatus, bool]:
+        """:meth:`_command` of an action already checked and clipped (:func:`clipped_actions`)."""
         before = self._controller.target
         return self._commanded(values, self._controller.apply(values), before)
 
@@ -359,10 +378,7 @@ class LynxArmEnv(SceneDrawing, GoalRewards, gym.Env[Obs, npt.NDArray[np.float32]
         a = real_array(action, "action")
         if a.shape != (self._n_act,):
             raise InvalidInputError(f"action must have shape ({self._n_act},), got {a.shape}")
-        values = a.tolist()
-        if not all(map(math.isfinite, values)):
-            raise NonFiniteInputError(f"action must be finite, got {values}")
-        return [-1.0 if v < -1.0 else 1.0 if v > 1.0 else v for v in values]
+        return clipped_actions(a[None, :])[0]
 
     def _commanded(
         self, values: list[float], status: TargetStatus, before: tuple[float, ...]

@@ -34,7 +34,7 @@ import numpy.typing as npt
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-from lynxsim.envs.base import LynxArmEnv
+from lynxsim.envs.base import LynxArmEnv, clipped_actions
 from lynxsim.envs.control import TargetStatus
 from lynxsim.envs.pick_and_place import PickAndPlaceEnv
 from lynxsim.envs.reach import ReachEnv
@@ -250,16 +250,17 @@ class LynxVectorEnv(
         commands: dict[int, tuple[TargetStatus, bool]] = {}
         limit = self.max_episode_steps
 
+        rows = clipped_actions(a[going])
         if self._roll:  # the -v2 tool targets of all envs in one vectorised call
-            values = [envs[i]._action_values(a[i]) for i in going]
+            values = rows
             controllers = [self._roll[i] for i in going]
             targets = [c.target for c in controllers]
             statuses = ToolRollController.apply_many(controllers, values) if going else []
             for i, v, status, target in zip(going, values, statuses, targets, strict=True):
                 commands[i] = envs[i]._commanded(v, status, target)
         else:
-            for i in going:
-                commands[i] = envs[i]._command(a[i])
+            for i, v in zip(going, rows, strict=True):
+                commands[i] = envs[i]._command_values(v)
 
         def after(part: Sequence[int], hits: list[bool]) -> None:
             for i, hit in zip(part, hits, strict=True):
