@@ -6,9 +6,13 @@ of the id's class and steps them as Gymnasium's ``SyncVectorEnv`` of ``gym.make`
 envs would, with the same results bit for bit (tested), but with the physics of
 all N (the 0.8 of a step's time) in one native call
 (:class:`~lynxsim.sim.arm.env_batch.EnvBatch`, the GIL released, one thread
-per CPU). What is per env is the single env's own code, not a copy of it: the
-action turned into servo targets (:meth:`LynxArmEnv._command
-<lynxsim.envs.base.LynxArmEnv._command>`), the observation, reward, success and
+per CPU). The actions of all N are checked and clipped by one call
+(:func:`~lynxsim.envs.base.clipped_actions`), and with ``-v2`` their tool targets
+moved by one :func:`~lynxsim.envs.tool_action.tool_targets` call (the single env
+calls both with one row). What is per env is the single env's own code, not a
+copy of it: the ``-v0``/``-v1`` action turned into servo targets
+(:meth:`LynxArmEnv._command <lynxsim.envs.base.LynxArmEnv._command>`), the
+observation, reward, success and
 info (:meth:`LynxArmEnv._outcome <lynxsim.envs.base.LynxArmEnv._outcome>`), and
 the reset with its draws (cube, goal, random obstacles, randomisation) from each
 env's own ``np_random``.
