@@ -75,10 +75,7 @@ Obs = dict[str, npt.NDArray[Any]]
 
 
 def clipped_actions(actions: FloatArray) -> list[list[float]]:
-    """Rows of actions, shape (N, A), clipped to [-1, 1], as lists (one per env).
-
-    The one check and clipping of an action: the single env calls it with N = 1,
-    the batched env with its N rows.
+    """Rows of actions (N, A) clipped to [-1, 1], as lists: the single env's (N = 1), the batch's.
 
     Raises:
         NonFiniteInputError: A row holds NaN or infinity (the message shows it).
