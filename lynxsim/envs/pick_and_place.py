@@ -128,7 +128,7 @@ class PickAndPlaceEnv(LynxArmEnv):
     llvmpipe (``benchmarks/bench_env.py``, ``render_quality="fast"``): one camera
     adds about 6 ms to a step at 84 x 84 and 7 ms at 128 x 128 (the floor, not the
     pixels, dominates): 154 and 144 steps/s against 2,850 state-only; with
-    ``render_quality="lean"`` (no floor drawn) about 0.5 ms at 84 x 84, 0.37-0.39x
+    ``render_quality="lean"`` (no floor drawn) about 0.5 ms at 84 x 84, 0.36-0.39x
     the state-only env's steps/s in CPU time (``benchmarks/bench_vector_env.py``).
     Without ``pixels`` (default) nothing is rendered and the observation is as above.
 
