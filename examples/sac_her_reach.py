@@ -1,4 +1,4 @@
-"""Train Stable-Baselines3 SAC with hindsight experience replay (HER) on ``LynxReach-v1``.
+"""Train Stable-Baselines3 SAC with hindsight experience replay (HER) on ``LynxReach-v2``.
 
 The arm's tool point must end an episode (100 steps of 0.04 s = 4 s) within 25 mm
 of a goal drawn anew at every reset; the reward is sparse (-1 per step until the
@@ -26,7 +26,7 @@ in that folder, then renamed when complete, so a reader never sees half a file):
       model = SAC.load("runs/sac_her_reach/model.zip", env=venv)  # HER needs the env
       action, _ = model.predict(venv.normalize_obs(obs), deterministic=True)
 
-  with ``make`` a function returning ``gym.make("LynxReach-v1", collision_penalty=1.0)``.
+  with ``make`` a function returning ``gym.make("LynxReach-v2", collision_penalty=1.0)``.
 
 Observation normalisation is what makes this work at this budget: without it
 (``--no-normalize``) the same run reached only 0.28 success after 20_000 steps,
@@ -72,8 +72,8 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecNormalize
 import lynxsim.envs
 from lynxsim.fileio import atomic_path
 
-ENV_ID = lynxsim.envs.REACH_ID
-"""The goal env trained on (``LynxReach-v1``)."""
+ENV_ID = lynxsim.envs.REACH_V2_ID
+"""The goal env trained on (``LynxReach-v2``)."""
 EVAL_SEED_BASE = 10_000
 """Held-out episode i is reset with seed ``EVAL_SEED_BASE + i``."""
 
