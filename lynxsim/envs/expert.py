@@ -53,6 +53,7 @@ from lynxsim.envs.routes import (
     Planner,
     Point,
     Pose,
+    SearchWorld,
 )
 from lynxsim.envs.tool_action import ToolRollController
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
@@ -180,16 +181,18 @@ class PickAndPlaceExpert:
 
     Args:
         env: A ``LynxPickAndPlace`` env (wrapped or not) with ``control="tool"``.
+        search: Where the moves are searched: ``"cover"`` (the arm's sphere cover,
+            default) or ``"exact"`` (:class:`~lynxsim.envs.routes.Planner`).
 
     Raises:
-        InvalidInputError: Another env or control mode.
+        InvalidInputError: Another env or control mode, or an unknown ``search``.
     """
 
-    def __init__(self, env: gym.Env[Any, Any]) -> None:
+    def __init__(self, env: gym.Env[Any, Any], search: SearchWorld = "cover") -> None:
         u, controller = tool_env(env, PickAndPlaceEnv)
         self._controller = controller
         self._rolls = isinstance(controller, ToolRollController)
-        self._planner = Planner(u, controller)
+        self._planner = Planner(u, controller, search)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = PickAndPlaceEnv.OBS_INDEX
         self._env = u
@@ -441,18 +444,19 @@ class ReachExpert:
 
     Args:
         env: A ``LynxReach`` env (wrapped or not) with ``control="tool"``.
+        search: ``"cover"`` (default) or ``"exact"``, as :class:`PickAndPlaceExpert`'s.
 
     Raises:
-        InvalidInputError: Another env or control mode.
+        InvalidInputError: Another env or control mode, or an unknown ``search``.
     """
 
-    def __init__(self, env: gym.Env[Any, Any]) -> None:
+    def __init__(self, env: gym.Env[Any, Any], search: SearchWorld = "cover") -> None:
         u, controller = tool_env(env, ReachEnv)
         self._controller = controller
         self._roll_step = (
             controller.roll_step if isinstance(controller, ToolRollController) else 0.0
         )
-        self._planner = Planner(u, controller)
+        self._planner = Planner(u, controller, search)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = ReachEnv.OBS_INDEX
         self.reset()
