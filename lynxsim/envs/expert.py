@@ -136,7 +136,7 @@ _BESIDE_ALONG_M = 0.007
 """With ``-v2``, a plunge has the cube between the fingers within this along the pads [m]
 (18 mm wide on a 25 mm cube)."""
 _HOLD_JITTER_M = 0.0022
-"""With ``-v2``, above this estimated jitter per step and axis [m] (action noise ~0.07) a
+"""Above this estimated jitter per step and axis [m] (action noise ~0.07) a
 cube put down on a table goal is held there, not let go: fingers opening and rising
 around it under that noise knocked it off the goal in most lost episodes."""
 _PRESSED_M = 0.004
@@ -162,19 +162,19 @@ class PickAndPlaceExpert:
 
     The approach and the carry are planned (module docstring); a goal above the
     table's resting height is held in the air (the cube stays gripped); a goal
-    on the table is placed and released, and the arm backs off straight up.
+    on the table is placed and released, and the arm backs off straight up;
+    under action noise (the command's estimated jitter per step, how far it
+    strays from where the last action put it, above :data:`_HOLD_JITTER_M`) it is
+    held there instead (opening and rising around it knocked it off the goal).
     With the ``-v2`` action (``control="tool_roll"``) the wrist roll turns the
     fingers, above the cube, to close across two of its faces however the cube
     is turned about the vertical, and holds the roll it has in the other phases
     (the planned moves hold it too). Its grasp also copes with noisy actions: it
-    estimates the command's jitter per step (how far the command strays from
-    where the last action put it), hovers that much higher above the cube, plunges
-    only when the fingers stand open and the tool and the command are centred,
-    takes the fingertips past the cube's top in one step, and gives a plunge up as
-    soon as a finger presses the cube into the table; it plunges without waiting for
-    a centred tool (under noise that does not predict the next step: retries are
-    cheaper), and above :data:`_HOLD_JITTER_M` of jitter it holds a cube put down on a
-    table goal there instead of letting go (opening and rising around it knocked it off).
+    hovers that jitter higher above the cube, plunges when the fingers stand open
+    and the tool and the command are roughly centred (it waits no longer for a
+    centred tool: under noise that does not predict the next step, and retries
+    are cheaper), takes the fingertips past the cube's top in one step, and gives a
+    plunge up as soon as a finger presses the cube into the table.
     Closed loop: every step decides from the observation; a grasp that misses is
     opened and tried again, a cube that slips out or is knocked off the goal is
     picked up again, a command pushed off a planned route is re-planned.
@@ -275,10 +275,10 @@ class PickAndPlaceExpert:
         grip = 1.0
         closing = float(q_cmd[0])  # azimuth along which the fingers close
         align = self._align
+        self._jitter_now = self._jitter(cmd)
         if self._rolls:
             self._roll_now = float(q_cmd[4])
             closing -= self._roll_now - GRIP_ROLL_RAD
-            self._jitter_now = self._jitter(cmd)
             align += _JITTER_MARGIN * self._jitter_now
 
         if phase is _Phase.APPROACH:
@@ -380,8 +380,8 @@ class PickAndPlaceExpert:
             # left alone: picking it up again would risk more than it can win).
             if math.dist(cube, goal) > self._threshold:
                 self._enter(_Phase.APPROACH)
+        self._last = (cmd, arm)
         if self._rolls:
-            self._last = (cmd, arm)
             return np.array([*arm, self._roll_action(self.phase), grip], dtype=np.float32)
         return np.array([*arm, grip], dtype=np.float32)
 
@@ -422,7 +422,7 @@ class PickAndPlaceExpert:
                 and (down or self._count > _MAX_WAIT_STEPS)
                 and (on_goal or self._count > 2 * _MAX_WAIT_STEPS)
             ):
-                if self._rolls and self._jitter_now > _HOLD_JITTER_M:
+                if self._jitter_now > _HOLD_JITTER_M:
                     self._enter(_Phase.HOLD)  # held on the goal: a release under noise knocks it
                     return arm, -1.0
                 self._enter(_Phase.RELEASE)
