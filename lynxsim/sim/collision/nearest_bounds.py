@@ -39,22 +39,22 @@ _BOX, _CYLINDER, _SPHERE = 6, 5, 2
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _sdf(kind, size, rbound, x, y, z):  # type: ignore[no-untyped-def]  # numba
+def _sdf(kind, s0, s1, s2, rbound, x, y, z):  # type: ignore[no-untyped-def]  # numba
     """Signed distance of a point to an obstacle in its frame, and the way out (zero inside)."""
     if kind == _BOX:
-        ox, oy, oz = abs(x) - size[0], abs(y) - size[1], abs(z) - size[2]
+        ox, oy, oz = abs(x) - s0, abs(y) - s1, abs(z) - s2
         inside = max(max(ox, oy), oz)
         ax = math.copysign(max(ox, 0.0), x)
         ay = math.copysign(max(oy, 0.0), y)
         az = math.copysign(max(oz, 0.0), z)
     elif kind == _CYLINDER:
         rho = math.hypot(x, y)
-        radial, axial = rho - size[0], abs(z) - size[1]
+        radial, axial = rho - s0, abs(z) - s1
         scale = max(radial, 0.0) / (rho if rho > 0.0 else 1.0)
         ax, ay, az = x * scale, y * scale, math.copysign(max(axial, 0.0), z)
         inside = max(radial, axial)
     else:
-        radius = size[0] if kind == _SPHERE else rbound
+        radius = s0 if kind == _SPHERE else rbound
         norm = math.sqrt(x * x + y * y + z * z)
         inside = norm - radius
         scale = max(inside, 0.0) / (norm if norm > 0.0 else 1.0)
@@ -63,88 +63,103 @@ def _sdf(kind, size, rbound, x, y, z):  # type: ignore[no-untyped-def]  # numba
     return (dist if dist > 0.0 else inside), ax, ay, az
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def _extent_bound(xpos, xmat, s, g, extent, reach, kind, size, rbound, pos, r, j):  # type: ignore[no-untyped-def]  # numba
-    """The geom's distance from the obstacle at its centre, less its extent towards it [m]."""
-    dx = xpos[s, g, 0] - pos[j, 0]
-    dy = xpos[s, g, 1] - pos[j, 1]
-    dz = xpos[s, g, 2] - pos[j, 2]
-    lx = r[0, 0] * dx + r[1, 0] * dy + r[2, 0] * dz
-    ly = r[0, 1] * dx + r[1, 1] * dy + r[2, 1] * dz
-    lz = r[0, 2] * dx + r[1, 2] * dy + r[2, 2] * dz
-    sdf, ax, ay, az = _sdf(kind[j], size[j], rbound[j], lx, ly, lz)
-    if sdf <= 0.0:
-        return sdf - reach[g, 1]
-    nx = (r[0, 0] * ax + r[0, 1] * ay + r[0, 2] * az) / sdf
-    ny = (r[1, 0] * ax + r[1, 1] * ay + r[1, 2] * az) / sdf
-    nz = (r[2, 0] * ax + r[2, 1] * ay + r[2, 2] * az) / sdf
-    towards = reach[g, 0]
-    for a in range(3):
-        proj = nx * xmat[s, g, a] + ny * xmat[s, g, 3 + a] + nz * xmat[s, g, 6 + a]
-        towards += abs(proj) * extent[g, a]
-    return sdf - min(towards, reach[g, 1])
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _sphere_bound(  # type: ignore[no-untyped-def]  # numba
-    xpos, xmat, s, g, first, centres, radii, kind, size, rbound, pos, r, j, floor, level
-):
-    """The smallest distance of the geom's cover spheres to the obstacle [m].
-
-    ``floor`` (another lower bound) as soon as one sphere is within ``level``
-    (the bound is then below the level either way).
-    """
-    low = np.inf
-    for k in range(first[g], first[g + 1]):
-        u, v, w = centres[k, 0], centres[k, 1], centres[k, 2]
-        dx = xpos[s, g, 0] + xmat[s, g, 0] * u + xmat[s, g, 1] * v + xmat[s, g, 2] * w - pos[j, 0]
-        dy = xpos[s, g, 1] + xmat[s, g, 3] * u + xmat[s, g, 4] * v + xmat[s, g, 5] * w - pos[j, 1]
-        dz = xpos[s, g, 2] + xmat[s, g, 6] * u + xmat[s, g, 7] * v + xmat[s, g, 8] * w - pos[j, 2]
-        lx = r[0, 0] * dx + r[1, 0] * dy + r[2, 0] * dz
-        ly = r[0, 1] * dx + r[1, 1] * dy + r[2, 1] * dz
-        lz = r[0, 2] * dx + r[1, 2] * dy + r[2, 2] * dz
-        sdf, _, _, _ = _sdf(kind[j], size[j], rbound[j], lx, ly, lz)
-        low = min(low, sdf - radii[k])
-        if low - BOUND_TOLERANCE_M < level:
-            return floor
-    return low
-
-
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _bound(  # type: ignore[no-untyped-def]  # numba
-    xpos, xmat, s, g, level, geo, first, centres, radii, fixed, kind, size, rbound, pos, r, j
+    xpos,
+    xmat,
+    s,
+    g,
+    level,
+    extent,
+    reach,
+    first,
+    centres,
+    radii,
+    fixed,
+    kind,
+    size,
+    rbound,
+    pos,
+    rot,
+    j,
 ):
-    """A lower bound of geom g's distance to obstacle j [m], tightened while below ``level``.
+    """A lower bound of geom g's distance to obstacle j in state s [m], tightened below ``level``.
 
-    A geom fixed to the world has its exact distance (MuJoCo's); another gets
-    the extent bound, and where that is below ``level`` the larger of it and
-    its cover spheres' (both lower bounds), less :data:`BOUND_TOLERANCE_M`.
+    A geom fixed to the world has its exact distance (MuJoCo's); another its
+    bounding sphere's, then, where that is below ``level``, its extent bound
+    (its distance from the obstacle at its centre less its extent towards
+    it), then, where still below, the larger of that and its cover spheres'
+    (all lower bounds), less :data:`BOUND_TOLERANCE_M`. Written out in one
+    function: array arguments passed on per geom cost reference counts.
     """
     if not math.isnan(fixed[g, j]):
         return fixed[g, j]
-    extent, reach = geo
-    # the bounding spheres first: a bound below both of theirs is no lower
-    dx = xpos[s, g, 0] - pos[j, 0]
-    dy = xpos[s, g, 1] - pos[j, 1]
-    dz = xpos[s, g, 2] - pos[j, 2]
-    weak = math.sqrt(dx * dx + dy * dy + dz * dz) - rbound[j] - reach[g, 1] - BOUND_TOLERANCE_M
+    tol = BOUND_TOLERANCE_M
+    px, py, pz = pos[j, 0], pos[j, 1], pos[j, 2]
+    cx, cy, cz = xpos[s, g, 0], xpos[s, g, 1], xpos[s, g, 2]
+    dx, dy, dz = cx - px, cy - py, cz - pz
+    weak = math.sqrt(dx * dx + dy * dy + dz * dz) - rbound[j] - reach[g, 1] - tol
     if weak >= level:
         return weak
-    b = _extent_bound(xpos, xmat, s, g, extent, reach, kind, size, rbound, pos, r, j)
-    if b - BOUND_TOLERANCE_M >= level:
-        return b - BOUND_TOLERANCE_M
-    tight = _sphere_bound(
-        xpos, xmat, s, g, first, centres, radii, kind, size, rbound, pos, r, j, b, level
-    )
-    return max(b, tight) - BOUND_TOLERANCE_M
+    k, s0, s1, s2, rb = kind[j], size[j, 0], size[j, 1], size[j, 2], rbound[j]
+    r00, r01, r02 = rot[j, 0, 0], rot[j, 0, 1], rot[j, 0, 2]
+    r10, r11, r12 = rot[j, 1, 0], rot[j, 1, 1], rot[j, 1, 2]
+    r20, r21, r22 = rot[j, 2, 0], rot[j, 2, 1], rot[j, 2, 2]
+    lx = r00 * dx + r10 * dy + r20 * dz
+    ly = r01 * dx + r11 * dy + r21 * dz
+    lz = r02 * dx + r12 * dy + r22 * dz
+    sdf, ax, ay, az = _sdf(k, s0, s1, s2, rb, lx, ly, lz)
+    if sdf <= 0.0:
+        b = sdf - reach[g, 1]
+    else:
+        nx = (r00 * ax + r01 * ay + r02 * az) / sdf
+        ny = (r10 * ax + r11 * ay + r12 * az) / sdf
+        nz = (r20 * ax + r21 * ay + r22 * az) / sdf
+        towards = reach[g, 0]
+        for a in range(3):
+            proj = nx * xmat[s, g, a] + ny * xmat[s, g, 3 + a] + nz * xmat[s, g, 6 + a]
+            towards += abs(proj) * extent[g, a]
+        b = sdf - min(towards, reach[g, 1])
+    if b - tol >= level:
+        return b - tol
+    m0, m1, m2 = xmat[s, g, 0], xmat[s, g, 1], xmat[s, g, 2]
+    m3, m4, m5 = xmat[s, g, 3], xmat[s, g, 4], xmat[s, g, 5]
+    m6, m7, m8 = xmat[s, g, 6], xmat[s, g, 7], xmat[s, g, 8]
+    tight = np.inf
+    for i in range(first[g], first[g + 1]):
+        u, v, w = centres[i, 0], centres[i, 1], centres[i, 2]
+        ex = dx + m0 * u + m1 * v + m2 * w
+        ey = dy + m3 * u + m4 * v + m5 * w
+        ez = dz + m6 * u + m7 * v + m8 * w
+        qx = r00 * ex + r10 * ey + r20 * ez
+        qy = r01 * ex + r11 * ey + r21 * ez
+        qz = r02 * ex + r12 * ey + r22 * ez
+        d, _, _, _ = _sdf(k, s0, s1, s2, rb, qx, qy, qz)
+        tight = min(tight, d - radii[i])
+        if tight - tol < level:  # below the level either way: the extent bound will do
+            return b - tol
+    return max(b, tight) - tol
 
 
 @njit(cache=True, error_model="numpy")
 def _nearest(  # type: ignore[no-untyped-def]  # numba
-    xpos, xmat, geo, first, centres, radii, fixed, kind, size, rbound, pos, rot, below, out
+    xpos,
+    xmat,
+    extent,
+    reach,
+    first,
+    centres,
+    radii,
+    fixed,
+    kind,
+    size,
+    rbound,
+    pos,
+    rot,
+    below,
+    out,
 ):
     for j in range(kind.shape[0]):
-        r = rot[j]
         for s in range(xpos.shape[0]):
             low = np.inf
             for g in range(xpos.shape[1]):  # the geoms fixed to the world first: exact
@@ -153,13 +168,22 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
             for g in range(xpos.shape[1]):
                 if math.isnan(fixed[g, j]):
                     level = min(low, below[j])
+                    # the bounding spheres here too: most geoms end at them, with no call
+                    dx = xpos[s, g, 0] - pos[j, 0]
+                    dy = xpos[s, g, 1] - pos[j, 1]
+                    dz = xpos[s, g, 2] - pos[j, 2]
+                    weak = math.sqrt(dx * dx + dy * dy + dz * dz) - rbound[j] - reach[g, 1]
+                    if weak - BOUND_TOLERANCE_M >= level:
+                        low = min(low, weak - BOUND_TOLERANCE_M)
+                        continue
                     b = _bound(
                         xpos,
                         xmat,
                         s,
                         g,
                         level,
-                        geo,
+                        extent,
+                        reach,
                         first,
                         centres,
                         radii,
@@ -168,7 +192,7 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
                         size,
                         rbound,
                         pos,
-                        r,
+                        rot,
                         j,
                     )
                     low = min(low, b)
@@ -177,7 +201,23 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
 
 @njit(cache=True, error_model="numpy")
 def _per_geom(  # type: ignore[no-untyped-def]  # numba
-    xpos, xmat, s, level, geo, first, centres, radii, fixed, kind, size, rbound, pos, rot, j, out
+    xpos,
+    xmat,
+    s,
+    level,
+    extent,
+    reach,
+    first,
+    centres,
+    radii,
+    fixed,
+    kind,
+    size,
+    rbound,
+    pos,
+    rot,
+    j,
+    out,
 ):
     for g in range(xpos.shape[1]):
         out[g] = _bound(
@@ -186,7 +226,8 @@ def _per_geom(  # type: ignore[no-untyped-def]  # numba
             s,
             g,
             level,
-            geo,
+            extent,
+            reach,
             first,
             centres,
             radii,
@@ -195,7 +236,7 @@ def _per_geom(  # type: ignore[no-untyped-def]  # numba
             size,
             rbound,
             pos,
-            rot[j],
+            rot,
             j,
         )
 
@@ -262,7 +303,7 @@ class NearestBounds:
             below: Per obstacle, the level under which bounds are tightened, (m,) [m].
         """
         out = np.empty((len(xpos), self.obstacles))
-        _nearest(xpos, xmat, self._geo, *self._spheres, *self._obstacles, below, out)
+        _nearest(xpos, xmat, *self._geo, *self._spheres, *self._obstacles, below, out)
         return out
 
     def per_geom(
@@ -273,5 +314,5 @@ class NearestBounds:
         Tightened while below ``level`` [m].
         """
         out = np.empty(self._geoms)
-        _per_geom(xpos, xmat, s, level, self._geo, *self._spheres, *self._obstacles, j, out)
+        _per_geom(xpos, xmat, s, level, *self._geo, *self._spheres, *self._obstacles, j, out)
         return out
