@@ -39,8 +39,10 @@ PRESETTLE_S = 0.5
 """The hold before a playback's record (``rollout``'s default)."""
 
 
-def _physics_alone(model: mujoco.MjModel, q_cmd: np.ndarray, steps: int) -> tuple[float, float]:
-    """Wall time of the same physics without the playback's records: (loop, native) [s].
+def _physics_alone(
+    model: mujoco.MjModel, q_cmd: np.ndarray, steps: int
+) -> tuple[float, float, float]:
+    """Time of the same physics without the playback's records: loop, native, native CPU [s].
 
     The run's own commands (the hold before it, the trajectory and the
     settling), from the same rest state. Loop: set as the playback's Python
@@ -66,9 +68,9 @@ def _physics_alone(model: mujoco.MjModel, q_cmd: np.ndarray, steps: int) -> tupl
         data.ctrl[adr] = row
         mujoco.mj_step(model, data)
     loop = time.perf_counter() - start
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     rollout.rollout(model, data, state, controls[None], control_spec=mujoco.mjtState.mjSTATE_CTRL)
-    return loop, time.perf_counter() - start
+    return loop, time.perf_counter() - start, time.process_time() - cpu
 
 
 def playback_rtf() -> None:
@@ -84,30 +86,33 @@ def playback_rtf() -> None:
         model = load_arm_scene(built)
         plain = load_arm_spec(built).compile()  # the same scene without the recording sensors
         q_cmd = trajectory.sample(physics_grid(trajectory.duration, model.opt.timestep)).q
-        walls, cpus, loops, natives = [], [], [], []
+        walls, cpus, loops, natives, native_cpus = [], [], [], [], []
         for _ in range(REPEATS):
             start, cpu = time.perf_counter(), time.process_time()
             playback = play_arm(model, trajectory, task=task.name)
             walls.append(time.perf_counter() - start)
             cpus.append(time.process_time() - cpu)
-            loop, native = _physics_alone(plain, q_cmd, playback.log.steps)
+            loop, native, native_cpu = _physics_alone(plain, q_cmd, playback.log.steps)
             loops.append(loop)
             natives.append(native)
+            native_cpus.append(native_cpu)
         steps = playback.log.steps + round(PRESETTLE_S / model.opt.timestep)
         wall, cpu, loop, native = min(walls), min(cpus), min(loops), min(natives)
+        native_cpu = min(native_cpus)
         print(
             f"playback ({label:27s}): {wall / steps * 1e6:5.1f} us/step "
-            f"(CPU {cpu / steps * 1e6:5.1f}, both threads); physics alone "
+            f"(CPU {cpu / steps * 1e6:5.1f}, all threads); physics alone "
             f"{native / steps * 1e6:5.1f} us/step native, {loop / steps * 1e6:5.1f} us/step "
             f"in a Python loop; speed ratio {native / wall:.2f} of native, "
-            f"{loop / wall:.2f} of the loop ({steps} steps)"
+            f"{loop / wall:.2f} of the loop; CPU ratio {native_cpu / cpu:.2f} of native "
+            f"({steps} steps)"
         )
 
 
 def main() -> None:
     print(
         f"MUJOCO_GL={os.environ.get('MUJOCO_GL')}, mujoco {mujoco.__version__}, "
-        f"numpy {np.__version__}"
+        f"numpy {np.__version__}; load average {os.getloadavg()[0]:.2f}"
     )
     playback_rtf()
 

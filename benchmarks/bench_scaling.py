@@ -99,10 +99,14 @@ def bare_steps(model: mujoco.MjModel, steps: int) -> None:
 
 def playback_table(all_scenes: dict[int, Scene], lengths: list[int], repeats: int) -> None:
     """(a) Playback per step against bare ``mj_step`` by length and obstacle count."""
-    print("\n(a) play_arm vs bare mj_step, same model, best of", repeats)
+    print(
+        f"\n(a) play_arm vs bare mj_step, same model, best of {repeats}; speed ratio: wall "
+        f"time, CPU ratio: CPU time of all threads (load average {os.getloadavg()[0]:.2f})"
+    )
     print(
         f"{'obst':>4} {'len s':>5} {'steps':>6} {'play us/st':>10} {'bare us/st':>10} "
-        f"{'speed ratio':>11} {'play ms':>8} {'min clr mm':>10} {'contact steps':>13}"
+        f"{'speed ratio':>11} {'CPU ratio':>9} {'play ms':>8} {'min clr mm':>10} "
+        f"{'contact steps':>13}"
     )
     fits = {}
     for n, scene in all_scenes.items():
@@ -112,23 +116,27 @@ def playback_table(all_scenes: dict[int, Scene], lengths: list[int], repeats: in
         walls, total_steps = [], []
         for length in lengths:
             trajectory = back_and_forth(length)
-            play_s, bare_s = [], []
+            play_s, bare_s, play_cpu, bare_cpu = [], [], [], []
             for _ in range(repeats):
-                start = time.perf_counter()
+                start, cpu = time.perf_counter(), time.process_time()
                 playback = play_arm(model, trajectory, task="scaling")
                 play_s.append(time.perf_counter() - start)
+                play_cpu.append(time.process_time() - cpu)
                 steps = playback.log.steps + hold
-                start = time.perf_counter()
+                start, cpu = time.perf_counter(), time.process_time()
                 bare_steps(plain, steps)
                 bare_s.append(time.perf_counter() - start)
+                bare_cpu.append(time.process_time() - cpu)
             wall, bare = min(play_s), min(bare_s)
+            cpu_ratio = min(bare_cpu) / min(play_cpu)
             report = playback.report
             clearance = report.min_clearance_m
             clr = "-" if clearance is None else f"{clearance * 1e3:.1f}"
             hit = "-" if report.obstacle is None else str(report.obstacle.steps_in_contact)
             print(
                 f"{n:>4} {length:>5} {steps:>6} {wall / steps * 1e6:>10.1f} "
-                f"{bare / steps * 1e6:>10.1f} {bare / wall:>11.3f} {wall * 1e3:>8.1f} "
+                f"{bare / steps * 1e6:>10.1f} {bare / wall:>11.3f} {cpu_ratio:>9.3f} "
+                f"{wall * 1e3:>8.1f} "
                 f"{clr:>10} {hit:>13}"
             )
             walls.append(wall)

@@ -4,7 +4,9 @@ The sweep: the report's cylinder on a 20 mm grid over the table (1,836
 placements) for one task and two trajectory types, judged on recorded runs
 (:mod:`lynxsim.sim.recorded`). The baseline, measured in the same run: the
 same rows played one by one (a physics run each, as ``lynxsim play --no-video``
-does), on a sample of them. Every backend starts from an empty folder (no
+does), on a sample of them. First, ``planned`` rows (each row planned with the
+compiled planner around its placement, then played) on a coarser grid, in rows
+per second of wall and of CPU time. Every backend starts from an empty folder (no
 shard reused)::
 
     python benchmarks/bench_sweep.py [--step-mm 20] [--played 12]
@@ -33,7 +35,7 @@ TASK = os.path.join(os.path.dirname(__file__), "..", "tasks", "obstacle_avoidanc
 KINDS = (TrajectoryKind.LINE, TrajectoryKind.QUINTIC)
 
 
-def _spec(step_mm: float) -> SweepSpec:
+def _spec(step_mm: float, kinds: tuple[TrajectoryKind, ...] = KINDS) -> SweepSpec:
     task = load_task(TASK)
     (x0, x1), (y0, y1) = table_extent_mm()
     gx, gy = np.meshgrid(
@@ -45,7 +47,7 @@ def _spec(step_mm: float) -> SweepSpec:
         description="",
         tasks=(task,),
         task_files=(task.source,) if task.source else (),
-        kinds=KINDS,
+        kinds=kinds,
         planner_seeds=(0,),
         obstacle=ObstacleSweep("cylinder", gx.reshape(-1), gy.reshape(-1), None, gx.shape),
         cube_positions=None,
@@ -93,11 +95,30 @@ def _timed(spec: SweepSpec, backend: object) -> tuple[float, dict]:
     return rows / elapsed, outcome.table
 
 
+def _planned(step_mm: float) -> None:
+    """``planned`` rows (each planned, compiled planner, and played) per second, wall and CPU."""
+    spec = _spec(step_mm, (TrajectoryKind.PLANNED,))
+    with tempfile.TemporaryDirectory() as out:
+        start, cpu = time.perf_counter(), time.process_time()
+        outcome = run_sweep(spec, out, backend=LocalBackend(1))
+        wall, cpu = time.perf_counter() - start, time.process_time() - cpu
+    rows = len(outcome.table["task"])
+    print(
+        f"{'planned rows, local --jobs 1':40s} {rows / wall:10.1f} rows/s wall, {rows / cpu:.1f} "
+        f"rows/s of CPU ({rows} rows on a {step_mm:g} mm grid; load average "
+        f"{os.getloadavg()[0]:.2f})"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--step-mm", type=float, default=20.0)
     parser.add_argument("--played", type=int, default=12, help="rows played one by one (baseline)")
+    parser.add_argument(
+        "--planned-step-mm", type=float, default=100.0, help="grid of the planned rows' sweep"
+    )
     args = parser.parse_args()
+    _planned(args.planned_step_mm)
     spec = _spec(args.step_mm)
     rows = spec.placements * len(KINDS)
     print(

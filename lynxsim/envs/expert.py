@@ -53,6 +53,7 @@ from lynxsim.envs.routes import (
     Planner,
     Point,
     Pose,
+    SearchWorld,
 )
 from lynxsim.envs.tool_action import ToolRollController
 from lynxsim.envs.workspace import CARRY_HEIGHT_M, GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
@@ -81,16 +82,20 @@ given up at once."""
 _GRASP_ABOVE_M = 0.003
 """Tool height above the cube's centre at the grasp [m]: the pads cover its faces, the
 palm stays off its top."""
-_CENTRED_ACROSS_M = 0.0015
+_CENTRED_ACROSS_M = 0.005
 """The plunge starts when the tool point is this close to the cube's centre along the
-fingers' closing axis [m] (a 30 mm opening leaves 2.5 mm each side of a 25 mm cube) ..."""
+fingers' closing axis [m] ... Loose on purpose: at action noise 0.1 the tool strays
+~4 mm (std) per axis from its target at every step, with no correlation from one step
+to the next (the servos overshoot each step's 3 mm of command noise), so waiting for a
+centred tool predicts nothing about the next step and only uses up the episode; cheap
+retries win (a 30 mm opening leaves 2.5 mm each side of a 25 mm cube)."""
 _CENTRED_ALONG_M = 0.005
 """... and this close along the pads' width (18 mm wide pads) [m]."""
 _PRESS_M = 0.006
 """A plunging command goes at most this far below the tool point [m]: a finger that
 lands on the cube presses it no harder (hard presses tip it over)."""
-_PRE_GRASP_WAIT = 20
-"""Steps the centring may take before the expert plunges anyway."""
+_PRE_GRASP_WAIT = 3
+"""Steps the centring may take before the expert plunges anyway (see above)."""
 _PLUNGE_STEPS = 6
 """Steps a plunge may take to bring the cube between the fingers."""
 _AROUND_M = 0.004
@@ -100,8 +105,14 @@ _MAX_WAIT_STEPS = 15
 """Steps to wait at most for the arm to settle."""
 _HOVER_M = 0.05
 """Height of the tool above the cube before it descends [m]."""
+_HOVER_NEAR_M = 0.008
+"""A command this close to the hover point [m] goes on to centre over the cube (the
+route's last millimetres, braking under noise, took tens of steps)."""
 _GRIP_CLOSE_STEPS = 6
 """Steps the gripper gets to close before the lift."""
+_GRIP_STALL_STEPS = 3
+"""Steps more a closing gripper gets to reach the cube's width before the grasp counts as
+missed (the fingers have stopped by then: on a tipped cube, or closed past it)."""
 _IN_HAND_M = 0.02
 """Largest cube-to-tool distance of a held cube [m]."""
 _RELEASE_STEPS = 3
@@ -124,6 +135,10 @@ _OPEN_FOR_PLUNGE_M = 0.003
 _BESIDE_ALONG_M = 0.007
 """With ``-v2``, a plunge has the cube between the fingers within this along the pads [m]
 (18 mm wide on a 25 mm cube)."""
+_HOLD_JITTER_M = 0.0022
+"""Above this estimated jitter per step and axis [m] (action noise ~0.07) a
+cube put down on a table goal is held there, not let go: fingers opening and rising
+around it under that noise knocked it off the goal in most lost episodes."""
 _PRESSED_M = 0.004
 """A cube this far below its resting height is pressed into the table by a finger [m]."""
 
@@ -147,32 +162,37 @@ class PickAndPlaceExpert:
 
     The approach and the carry are planned (module docstring); a goal above the
     table's resting height is held in the air (the cube stays gripped); a goal
-    on the table is placed and released, and the arm backs off straight up.
+    on the table is placed and released, and the arm backs off straight up;
+    under action noise (the command's estimated jitter per step, how far it
+    strays from where the last action put it, above :data:`_HOLD_JITTER_M`) it is
+    held there instead (opening and rising around it knocked it off the goal).
     With the ``-v2`` action (``control="tool_roll"``) the wrist roll turns the
     fingers, above the cube, to close across two of its faces however the cube
     is turned about the vertical, and holds the roll it has in the other phases
     (the planned moves hold it too). Its grasp also copes with noisy actions: it
-    estimates the command's jitter per step (how far the command strays from
-    where the last action put it), hovers that much higher above the cube, plunges
-    only when the fingers stand open and the tool and the command are centred,
-    takes the fingertips past the cube's top in one step, and gives a plunge up as
-    soon as a finger presses the cube into the table.
+    hovers that jitter higher above the cube, plunges when the fingers stand open
+    and the tool and the command are roughly centred (it waits no longer for a
+    centred tool: under noise that does not predict the next step, and retries
+    are cheaper), takes the fingertips past the cube's top in one step, and gives a
+    plunge up as soon as a finger presses the cube into the table.
     Closed loop: every step decides from the observation; a grasp that misses is
     opened and tried again, a cube that slips out or is knocked off the goal is
     picked up again, a command pushed off a planned route is re-planned.
 
     Args:
         env: A ``LynxPickAndPlace`` env (wrapped or not) with ``control="tool"``.
+        search: Where the moves are searched: ``"cover"`` (the arm's sphere cover,
+            default) or ``"exact"`` (:class:`~lynxsim.envs.routes.Planner`).
 
     Raises:
-        InvalidInputError: Another env or control mode.
+        InvalidInputError: Another env or control mode, or an unknown ``search``.
     """
 
-    def __init__(self, env: gym.Env[Any, Any]) -> None:
+    def __init__(self, env: gym.Env[Any, Any], search: SearchWorld = "cover") -> None:
         u, controller = tool_env(env, PickAndPlaceEnv)
         self._controller = controller
         self._rolls = isinstance(controller, ToolRollController)
-        self._planner = Planner(u, controller)
+        self._planner = Planner(u, controller, search)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = PickAndPlaceEnv.OBS_INDEX
         self._env = u
@@ -194,7 +214,7 @@ class PickAndPlaceExpert:
         self._offset: Point = (0.0, 0.0, 0.0)
         self._hold_at: Pose = (0.0, 0.0, 0.0, 0.0)
         self._roll_now = self._roll_held = self._roll_grasp = GRIP_ROLL_RAD
-        self._jitter_sq = 0.0
+        self._jitter_sq = self._jitter_now = 0.0
         self._last: tuple[Pose, list[float]] | None = None
         self._mover.route = None
         self._planner.reset()
@@ -255,14 +275,16 @@ class PickAndPlaceExpert:
         grip = 1.0
         closing = float(q_cmd[0])  # azimuth along which the fingers close
         align = self._align
+        self._jitter_now = self._jitter(cmd)
         if self._rolls:
             self._roll_now = float(q_cmd[4])
             closing -= self._roll_now - GRIP_ROLL_RAD
-            align += _JITTER_MARGIN * self._jitter(cmd)
+            align += _JITTER_MARGIN * self._jitter_now
 
         if phase is _Phase.APPROACH:
             hover = (cube[0], cube[1], cube[2] + _HOVER_M)
             arm, at = self._transit(cmd, tool, q_cmd, hover, grasped=False)
+            at = at or math.dist(cmd[:3], hover) < _HOVER_NEAR_M
             if at and (settled or near or self._count > _MAX_WAIT_STEPS):
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.ALIGN:
@@ -308,14 +330,15 @@ class PickAndPlaceExpert:
             else:
                 beside = math.dist(tool[:2], cube[:2]) < _AROUND_M
             around = beside and tool[2] - base < _GRASP_ABOVE_M + _AROUND_M
-            if around:
+            pressed = self._rolls and cube[2] < self._rest_z - _PRESSED_M
+            if around and not pressed:
                 self._enter(_Phase.GRASP)
                 self._hold_at = point_pose = (cmd[0], cmd[1], point[2], TOP_DOWN_PITCH_RAD)
                 arm, _ = straight(cmd, point_pose, c, _SLOW)
             elif (
                 self._count > _PLUNGE_STEPS
                 or (self._count >= 1 and tool[2] - base > self._on_top)
-                or (self._rolls and cube[2] < self._rest_z - _PRESSED_M)
+                or pressed
             ):  # landed on the cube or beside it: up and again
                 self._enter(_Phase.ALIGN)
         elif phase is _Phase.GRASP:  # close, holding the arm where the grasp began
@@ -324,7 +347,7 @@ class PickAndPlaceExpert:
             if self._count >= _GRIP_CLOSE_STEPS:
                 if self._gripped[0] <= opening <= self._gripped[1]:
                     self._enter(_Phase.LIFT)
-                elif self._count > _MAX_WAIT_STEPS:
+                elif self._count > _GRIP_CLOSE_STEPS + _GRIP_STALL_STEPS:
                     self._enter(_Phase.REOPEN)
         elif phase is _Phase.REOPEN:
             point = (cmd[0], cmd[1], cube[2] + align)
@@ -357,8 +380,8 @@ class PickAndPlaceExpert:
             # left alone: picking it up again would risk more than it can win).
             if math.dist(cube, goal) > self._threshold:
                 self._enter(_Phase.APPROACH)
+        self._last = (cmd, arm)
         if self._rolls:
-            self._last = (cmd, arm)
             return np.array([*arm, self._roll_action(self.phase), grip], dtype=np.float32)
         return np.array([*arm, grip], dtype=np.float32)
 
@@ -399,11 +422,16 @@ class PickAndPlaceExpert:
                 and (down or self._count > _MAX_WAIT_STEPS)
                 and (on_goal or self._count > 2 * _MAX_WAIT_STEPS)
             ):
+                if self._jitter_now > _HOLD_JITTER_M:
+                    self._enter(_Phase.HOLD)  # held on the goal: a release under noise knocks it
+                    return arm, -1.0
                 self._enter(_Phase.RELEASE)
                 self._hold_at = cmd
                 return [0.0, 0.0, 0.0, 0.0], 1.0
             return arm, -1.0
-        point = (*over, goal[2] - off[2])  # HOLD: follow the cube's offset in the hand
+        # HOLD: follow the cube's offset in the hand (a table goal: the cube just above it).
+        lift = _PLACE_ABOVE_M if goal[2] <= self._rest_z + 1e-3 else 0.0
+        point = (*over, goal[2] + lift - off[2])
         arm, _ = straight(cmd, (*point, pitch_for(point, q_cmd)), self._controller)
         return arm, -1.0
 
@@ -416,18 +444,19 @@ class ReachExpert:
 
     Args:
         env: A ``LynxReach`` env (wrapped or not) with ``control="tool"``.
+        search: ``"cover"`` (default) or ``"exact"``, as :class:`PickAndPlaceExpert`'s.
 
     Raises:
-        InvalidInputError: Another env or control mode.
+        InvalidInputError: Another env or control mode, or an unknown ``search``.
     """
 
-    def __init__(self, env: gym.Env[Any, Any]) -> None:
+    def __init__(self, env: gym.Env[Any, Any], search: SearchWorld = "cover") -> None:
         u, controller = tool_env(env, ReachEnv)
         self._controller = controller
         self._roll_step = (
             controller.roll_step if isinstance(controller, ToolRollController) else 0.0
         )
-        self._planner = Planner(u, controller)
+        self._planner = Planner(u, controller, search)
         self._mover = Mover(self._planner, u.q_ready)
         self._idx = ReachEnv.OBS_INDEX
         self.reset()

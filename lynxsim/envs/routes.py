@@ -15,7 +15,7 @@ from __future__ import annotations
 import copy
 import itertools
 import math
-from typing import NamedTuple
+from typing import Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -24,10 +24,12 @@ from lynxsim.arm import LYNX_ARM, ik_nearest, tool_pose_of
 from lynxsim.arm.motion import arm_lipschitz
 from lynxsim.envs.base import LynxArmEnv
 from lynxsim.envs.control import TargetStatus, ToolSpaceController
-from lynxsim.envs.workspace import GRIP_ROLL_RAD, TOP_DOWN_PITCH_RAD
+from lynxsim.envs.workspace import TOP_DOWN_PITCH_RAD
+from lynxsim.errors import InvalidInputError
 from lynxsim.plan import PlanningError, plan_segment
+from lynxsim.plan.oracle import ClearanceOracle
 from lynxsim.plan.subspace import JointSubspace
-from lynxsim.sim.planning import DEFAULT_MARGIN_M, CheckerOracle
+from lynxsim.sim.planning import DEFAULT_MARGIN_M, CheckerOracle, cover_oracle
 
 __all__ = [
     "ARRIVED_M",
@@ -37,6 +39,7 @@ __all__ = [
     "Point",
     "Pose",
     "Route",
+    "SearchWorld",
     "arrived",
     "braking",
     "toward",
@@ -46,6 +49,8 @@ FloatArray = npt.NDArray[np.float64]
 Point = tuple[float, float, float]
 Pose = tuple[float, float, float, float]
 """Tool point and pitch (x, y, z, pitch) [m, rad]."""
+SearchWorld = Literal["cover", "exact"]
+"""Where the experts' moves are searched: the robot's sphere cover, else the exact checker."""
 
 ARRIVED_M = 0.003
 """The commanded point counts as at its destination within this [m] (per axis) ..."""
@@ -178,19 +183,35 @@ class Planner:
     (:data:`GRIP_ROLL_RAD` unless a ``-v2`` action turned it) and the tool pitch
     kept within the controller's range. The result is dry-run through a
     copy of the controller.
+
+    With ``search="cover"`` the moves are searched on the episode's sphere cover
+    of the arm (:func:`lynxsim.sim.planning.cover_oracle`, built once per episode
+    at :meth:`reset`: one compiled call per batch of checks instead of MuJoCo's
+    distances); the cover never reads more clearance than the exact checker, so a
+    path certified on it is certified in the scene. Where the cover is too
+    pessimistic (no path on it), the exact checker plans the move.
+
+    Args:
+        env: The env whose scene the moves avoid.
+        controller: Its tool-space controller.
+        search: ``"cover"`` (default) or ``"exact"`` (every check on MuJoCo).
     """
 
-    def __init__(self, env: LynxArmEnv, controller: ToolSpaceController) -> None:
+    def __init__(
+        self, env: LynxArmEnv, controller: ToolSpaceController, search: SearchWorld = "cover"
+    ) -> None:
+        if search not in ("cover", "exact"):
+            raise InvalidInputError(f"search must be 'cover' or 'exact', got {search!r}")
         self._controller = controller
-        self._world = CheckerOracle(env.collision_checker)
-        self._roll = GRIP_ROLL_RAD
-        self._spaces = self._subspaces(GRIP_ROLL_RAD)
+        self._checker = env.collision_checker
+        self._search = search
+        self._exact = CheckerOracle(self._checker)
+        self._worlds: list[ClearanceOracle] = [self._exact]
         self._lipschitz = arm_lipschitz()
         self.reset()
 
-    def _subspaces(self, roll: float) -> tuple[_Subspace, _Subspace]:
-        """The two subspaces of the moves, with the wrist roll held at ``roll`` [rad]."""
-        world = self._world
+    def _subspaces(self, world: ClearanceOracle, roll: float) -> tuple[_Subspace, _Subspace]:
+        """The two subspaces of the moves in ``world``, the wrist roll held at ``roll`` [rad]."""
         lower, upper = np.asarray(LYNX_ARM.q_min), np.asarray(LYNX_ARM.q_max)
         top_down = JointSubspace(
             world,
@@ -206,8 +227,11 @@ class Planner:
         )
 
     def reset(self) -> None:
-        """Restart the seeds (call at every episode start)."""
+        """Restart the seeds and read the episode's scene (call at every episode start)."""
         self._plans = 0
+        cover = cover_oracle(self._checker) if self._search == "cover" else None
+        self._worlds = [self._exact] if cover is None else [cover, self._exact]
+        self._spaces: dict[tuple[int, float], tuple[_Subspace, _Subspace]] = {}
 
     def route(
         self, start: tuple[float, ...], goal: tuple[float, ...], *, grasped: bool
@@ -220,10 +244,24 @@ class Planner:
         Returns None when no attempt gave a path the controller follows exactly.
         """
         ends = np.array([start, goal], dtype=float)
-        if start[_ROLL_JOINT] != self._roll:
-            self._roll = start[_ROLL_JOINT]
-            self._spaces = self._subspaces(self._roll)
-        for sub in self._spaces:
+        for i, world in enumerate(self._worlds):
+            key = (i, start[_ROLL_JOINT])
+            if key not in self._spaces:
+                self._spaces[key] = self._subspaces(world, start[_ROLL_JOINT])
+            found = self._route(self._spaces[key], ends, start, grasped)
+            if found is not None:
+                return found
+        return None
+
+    def _route(
+        self,
+        spaces: tuple[_Subspace, _Subspace],
+        ends: FloatArray,
+        start: tuple[float, ...],
+        grasped: bool,
+    ) -> Route | None:
+        """:meth:`route` in one world's subspaces; ``ends`` (2, 5): start and goal [rad]."""
+        for sub in spaces:
             # Into the joint box: the controller's commands may stand a rounding error
             # beyond a limit (a pitch clipped to -pi/2 leaves the wrist 4e-8 rad past it).
             p = np.clip(sub.space.project(ends), sub.lower, sub.upper)

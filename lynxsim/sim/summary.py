@@ -46,7 +46,7 @@ def summarize(log: PlaybackLog, metrics: RobotMetrics | None = None) -> RunRepor
     names = meta.groups.obstacle_names
     obstacles: list[ObstacleClearance] = []
     if names and log.steps:
-        i_min = np.argmin(log.clearance_m, axis=0)
+        i_min, lowest = log.clearance.first_step, log.clearance.minimum
         for j, name in enumerate(names):
             first = tracker.first_contact_s(j)
             obstacles.append(
@@ -54,7 +54,7 @@ def summarize(log: PlaybackLog, metrics: RobotMetrics | None = None) -> RunRepor
                     name=name,
                     collided=first is not None,
                     first_contact_s=first,
-                    min_clearance_m=float(log.clearance_m[i_min[j], j]),
+                    min_clearance_m=float(lowest[j]),
                     min_clearance_time_s=float(log.time_s[i_min[j]]),
                 )
             )

@@ -7,6 +7,7 @@ import math
 import gymnasium as gym
 import mujoco
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -14,6 +15,7 @@ from lynxsim.angles import quat_yaw
 from lynxsim.envs import PICK_AND_PLACE_V2_ID, REACH_V2_ID, PickAndPlaceExpert, evaluate
 from lynxsim.envs.expert_moves import grasp_roll
 from lynxsim.envs.workspace import GRIP_ROLL_RAD
+from lynxsim.errors import InvalidInputError
 
 QUARTER = 0.5 * math.pi
 ALIGNED_RAD = 0.05
@@ -73,6 +75,24 @@ def test_the_v2_experts_succeed_without_contact_in_both_scene_kinds():
     reach = evaluate(REACH_V2_ID, "expert", 4, seed=0)
     assert reach.success_rate == 1.0
     assert reach.collision_steps == 0
+
+
+def test_the_v2_expert_picks_and_places_under_action_noise_without_contact():
+    # Seeded noise 0.1 (0.2 on [-1, 1]): the 100-episode rates live in
+    # tools/expert_noise_table.py; these episodes are deterministic.
+    for kwargs in ({}, {"random_obstacles": (1, 3)}):
+        summary = evaluate(
+            PICK_AND_PLACE_V2_ID, "expert", 2, seed=0, env_kwargs=kwargs, action_noise=0.1
+        )
+        assert summary.success_rate == 1.0, summary.episodes
+        assert summary.collision_steps == 0
+
+
+def test_the_expert_refuses_an_unknown_search_world():
+    env = gym.make(PICK_AND_PLACE_V2_ID)
+    with pytest.raises(InvalidInputError, match="search must be 'cover' or 'exact'"):
+        PickAndPlaceExpert(env, "fast")  # type: ignore[arg-type]
+    env.close()
 
 
 def test_v2_expert_actions_are_six_values_in_range():

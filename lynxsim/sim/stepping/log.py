@@ -2,7 +2,10 @@
 
 :func:`finish_log` turns the records of a stepped run
 (:mod:`lynxsim.sim.stepping.records`) into its log: contacts classified,
-clearances computed (:mod:`lynxsim.sim.collision`), all steps at once. Every
+clearances computed (:mod:`lynxsim.sim.collision`), all steps at once, or,
+for a natively stepped run, each obstacle's minimum found while it stepped and
+every step's clearance computed when the log's are first read
+(:class:`~lynxsim.sim.stepping.clearance_log.LoggedClearance`). Every
 way of stepping (:mod:`lynxsim.sim.stepping.rollout`,
 :mod:`lynxsim.sim.stepping.batch`) ends here, so that their logs are the same.
 """
@@ -18,10 +21,19 @@ import numpy.typing as npt
 
 from lynxsim.sim.binding import RobotBinding
 from lynxsim.sim.collision import CollisionGroups, classify_contacts, clearances_of_states
+from lynxsim.sim.stepping.clearance_log import LoggedClearance
 from lynxsim.sim.stepping.commands import RunCommands
 from lynxsim.sim.stepping.records import StepRecords
 
-__all__ = ["LogMeta", "PlaybackLog", "ProgressFn", "StepHook", "finish_log", "mujoco_warnings"]
+__all__ = [
+    "LogMeta",
+    "LoggedClearance",
+    "PlaybackLog",
+    "ProgressFn",
+    "StepHook",
+    "finish_log",
+    "mujoco_warnings",
+]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
@@ -67,7 +79,9 @@ class PlaybackLog:
         tool_ref: Commanded tool point, (S, 3) [m].
         tool: Simulated tool site, (S, 3) [m].
         force: Actuator forces, (S, n) [N·m].
-        clearance_m: Signed distance to each obstacle, (S, m) [m].
+        clearance: Signed distance to each obstacle, (S, m) [m], and each
+            obstacle's minimum (:class:`LoggedClearance`; ``clearance_m`` reads
+            the values).
         contact_step: Step of each recorded contact, (K,).
         contact_geoms: Its geom pair, (K, 2).
         contact_dist: Its signed distance, (K,) [m] (only contacts that count
@@ -90,7 +104,7 @@ class PlaybackLog:
     tool_ref: FloatArray
     tool: FloatArray
     force: FloatArray
-    clearance_m: FloatArray
+    clearance: LoggedClearance
     contact_step: IntArray
     contact_geoms: IntArray
     contact_dist: FloatArray
@@ -101,6 +115,11 @@ class PlaybackLog:
     warnings: dict[str, int] = field(default_factory=dict)
     diverged_at_s: float | None = None
     channels: dict[str, FloatArray] = field(default_factory=dict)
+
+    @property
+    def clearance_m(self) -> FloatArray:
+        """Signed distance to each obstacle after each step, (S, m) [m] (computed when read)."""
+        return self.clearance.values
 
     @property
     def steps(self) -> int:
@@ -160,16 +179,21 @@ def finish_log(
     ctrl = commands.ctrl
     c_step, c_geoms, c_dist = record.contacts(groups, recorded)
     qpos = record.qpos[:recorded].copy()
-    if record.clearance is not None:
-        clearance = record.clearance[:recorded].copy()
+    if record.minima is not None and recorded == len(record.time):
+        minima = record.minima
+        clearance = LoggedClearance.deferred(
+            model, groups, qpos, minima.value.copy(), minima.step.copy()
+        )
     else:
-        clearance = clearances_of_states(
-            model,
-            mujoco.MjData(model),
-            groups,
-            qpos,
-            record.geom_xpos[:recorded, record.carried],
-            record.geom_xmat[:recorded, record.carried],
+        clearance = LoggedClearance.known(
+            clearances_of_states(
+                model,
+                mujoco.MjData(model),
+                groups,
+                qpos,
+                record.geom_xpos[:recorded, record.carried],
+                record.geom_xmat[:recorded, record.carried],
+            )
         )
     tool_ref, settle_steps = commands.tool_ref, commands.settle_steps
     ref = np.concatenate([tool_ref, np.repeat(tool_ref[-1:], settle_steps, axis=0)])[:recorded]
@@ -191,7 +215,7 @@ def finish_log(
         tool_ref=ref,
         tool=record.tool[:recorded].copy(),
         force=record.force[:recorded, binding.actuator_ids],
-        clearance_m=clearance,
+        clearance=clearance,
         contact_step=c_step,
         contact_geoms=c_geoms,
         contact_dist=c_dist,

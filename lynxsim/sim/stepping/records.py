@@ -6,7 +6,7 @@ contact list; a Python loop fills it from ``MjData`` step by step.
 :class:`SensedRecorder` fills it from natively stepped chunks
 (:class:`SensedChunk`: states and the recording sensors,
 :mod:`lynxsim.sim.stepping.sensors`), chunk by chunk in step order, and computes the
-clearances of each chunk as it comes, so that this Python work can overlap with
+clearances' minima of each chunk as it comes, so that this Python work can overlap with
 the stepping of the next chunk (:mod:`lynxsim.sim.stepping.overlap`).
 """
 
@@ -18,13 +18,8 @@ import mujoco
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.sim.collision import (
-    CLEARANCE_CAP_M,
-    ClearanceGeometry,
-    ClearancePlan,
-    CollisionGroups,
-    classify_contacts,
-)
+from lynxsim.sim.collision import ClearanceGeometry, CollisionGroups, classify_contacts
+from lynxsim.sim.collision.minima import ClearanceMinima
 from lynxsim.sim.stepping.sensors import RecordingLayout
 
 __all__ = ["SensedChunk", "SensedRecorder", "StepRecords"]
@@ -65,8 +60,9 @@ class StepRecords:
         self._dist = np.empty(len(self._geoms))
         self._count = 0
         self._site = tool_site
-        self.clearance: FloatArray | None = None
-        """Clearances of the recorded states, (S, m) [m], once computed (else None)."""
+        self.minima: ClearanceMinima | None = None
+        """Each obstacle's smallest clearance, where a :class:`SensedRecorder` found it
+        (the clearances of every state are then computed when the log's are read)."""
 
     def state(self, k: int, data: mujoco.MjData) -> None:
         """What the step reached: time, whole state and actuator forces (of the step itself)."""
@@ -160,11 +156,11 @@ class SensedRecorder:
     (the run's last chunk comes with ``final``). Processing cuts the records
     out of the sensors (:meth:`RecordingLayout.split`), poses the states the
     contact gate flags again (``mj_kinematics`` + ``mj_collision``) for their
-    contact lists and computes every state's clearances
-    (:class:`~lynxsim.sim.collision.ClearancePlan`, as
-    :func:`~lynxsim.sim.collision.clearances_of_states` does), each state
-    posed at most once for both. Each state's records are those a Python loop
-    takes from ``MjData``, bit for bit.
+    contact lists and finds each obstacle's smallest clearance
+    (:class:`~lynxsim.sim.collision.minima.ClearanceMinima`: exact distances
+    only where the compiled bounds say the minimum could change; the
+    clearances of every state are computed when the log's are read). Each
+    state's records are those a Python loop takes from ``MjData``, bit for bit.
 
     Args:
         model: The model (with the recording sensors).
@@ -180,12 +176,10 @@ class SensedRecorder:
         record = StepRecords(model, 0, -1, groups)
         record.time, record.qpos = np.empty(steps), np.empty((steps, model.nq))
         record.force, record.tool = np.empty((steps, model.nu)), np.empty((steps, 3))
-        # clearances are computed chunk by chunk: the geom poses need not be kept
+        # the minima are found chunk by chunk: the geom poses need not be kept
         record.geom_xpos, record.geom_xmat = np.empty((0, r, 3)), np.empty((0, r, 9))
         record.carried = np.arange(r)
         record.contact_start = np.zeros(steps + 1, dtype=np.intp)
-        self._clearance = np.empty((steps, len(groups.obstacle_geoms)))
-        record.clearance = self._clearance
         self.record = record
         self._model, self._groups, self._layout = model, groups, layout
         self._data: mujoco.MjData | None = None
@@ -237,29 +231,33 @@ class SensedRecorder:
         if self._data is None:  # made here: in the consumer thread, while the stepping goes on
             self._data = mujoco.MjData(model)
             mujoco.mj_kinematics(model, self._data)  # the obstacles' poses
-            self._geometry = ClearanceGeometry.of(model, self._data, self._groups)
-        data = self._data
+            geometry = ClearanceGeometry.of(model, self._data, self._groups)
+            record.minima = ClearanceMinima(model, self._data, geometry)
+        data, minima = self._data, record.minima
+        if minima is None:
+            raise RuntimeError("the recorder's clearance minima were not made")
         sensors = self._layout.split(chunk.sensordata, next_row)
         start = self._done
         end = start + len(chunk.time)
         rows = slice(start, end)
         record.time[rows], record.qpos[rows] = chunk.time, chunk.qpos
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
-        plan = ClearancePlan(model, self._geometry, sensors.geom_xpos, sensors.geom_xmat)
-        gate, near = sensors.gate.tolist(), plan.near.tolist()
         qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
-        exact = []
-        # each state posed at most once, for its contacts and its clearances
-        for k in np.flatnonzero(sensors.gate | plan.near).tolist():
+        posed = -1  # the chunk's state that data holds
+        for k in np.flatnonzero(sensors.gate).tolist():
             qpos[:] = chunk.qpos[k]
             kinematics(model, data)
-            if gate[k]:
-                collision(model, data)
-                record.add_contacts(start + k, data)
-            if near[k]:
-                exact.append(plan.row(k, data))
-        clearance = self._clearance[rows]
-        clearance[:] = CLEARANCE_CAP_M
-        if exact:
-            clearance[plan.near] = exact
+            collision(model, data)
+            record.add_contacts(start + k, data)
+            posed = k
+
+        def pose(k: int) -> mujoco.MjData:
+            nonlocal posed
+            if k != posed:
+                qpos[:] = chunk.qpos[k]
+                kinematics(model, data)
+                posed = k
+            return data
+
+        minima.add(start, sensors.geom_xpos, sensors.geom_xmat, pose)
         self._done = end
