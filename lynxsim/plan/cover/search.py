@@ -98,12 +98,10 @@ def _distance(a, b):  # type: ignore[no-untyped-def]  # numba
 
 
 @njit(cache=True, error_model="numpy")
-def _extend(
-    w, nodes, parent, clear, size, target, c_target, step, lip, margin, grasped, work, counter
-):  # type: ignore[no-untyped-def]  # numba
+def _extend(w, nodes, parent, clear, size, target, tc, step, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
     """Grow a tree one step toward ``target``: (new node index or -1, whether it reached it).
 
-    ``c_target`` is the target's clearance when known (a node of the other tree), else NaN.
+    ``tc`` is the target's clearance when known (a node of the other tree), else NaN.
     """
     best, near = math.inf, 0
     for k in range(size[0]):
@@ -118,7 +116,7 @@ def _extend(
     if size[0] >= nodes.shape[0]:
         return -1, False
     c = _edge_clear(
-        w, nodes[near], q, clear[near], c_target if reached else math.nan, lip, margin, grasped,
+        w, nodes[near], q, clear[near], tc if reached else math.nan, lip, margin, grasped,
         work, counter,
     )  # fmt: skip
     if not c >= margin:
