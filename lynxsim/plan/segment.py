@@ -73,6 +73,7 @@ class SegmentPlan:
             ``path`` [m], ``>= margin / 2``.
         checks: Configurations the compiled search checked (0 for another planner).
         search_time_s: Time of the compiled search and shortening [s] (0 for another).
+        search_cpu_s: Its CPU time [s] (0 for another planner).
     """
 
     path: FloatArray
@@ -87,6 +88,7 @@ class SegmentPlan:
     clearance_bound_m: float
     checks: int = 0
     search_time_s: float = 0.0
+    search_cpu_s: float = 0.0
 
 
 def check_seed(seed: object) -> int:
@@ -438,4 +440,5 @@ def _compiled(
         clearance_bound_m=float(verdict.bound_m.min()),
         checks=found.checks,
         search_time_s=found.search_time_s,
+        search_cpu_s=found.search_cpu_s,
     )

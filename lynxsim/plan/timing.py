@@ -35,7 +35,6 @@ import numpy.typing as npt
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan.errors import PlanningError, TimingClearanceError
 from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
-from lynxsim.traj.check import check_trajectory
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.ruckig_profile import ruckig_trajectory
@@ -354,8 +353,10 @@ def _assemble(
         q_all if names is None or len(names) != len(q_all) else Waypoints(q_all, tuple(names)),
         bounds,
     )
+    # Not checked again: each chunk's segments were checked against the same ranges and
+    # limits by ruckig_trajectory (every order, 1-3, that any kind limits), and a
+    # trajectory's check is that of its segments.
     trajectory = Trajectory(TrajectoryKind(kind), tuple(segments), waypoints, bounds, limits)
-    check_trajectory(trajectory)
     report: list[TimedSegment] = []
     clock = 0.0
     for i, path in enumerate(paths):

@@ -33,14 +33,16 @@ MAX_SPLIT = 64
 
 Scratch = tuple[
     FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
-    npt.NDArray[np.bool_], npt.NDArray[np.bool_],
+    npt.NDArray[np.bool_], npt.NDArray[np.bool_], FloatArray, FloatArray,
 ]  # fmt: skip
-"""Work arrays of one world: full state, body and geom frames, sphere centres, stack, flags."""
+"""Work arrays of one world: full state, body and geom frames, sphere centres, stack, flags,
+and an edge's point and new points."""
 
 
 def scratch(world: WorldTuple) -> Scratch:
     """Fresh work arrays for :func:`clearance` on ``world`` (not shared between threads)."""
-    nq, b, g, s = len(world[0]), len(world[3]), len(world[12]), len(world[21])
+    nq, n, b = len(world[0]), len(world[1]), len(world[3])
+    g, s = len(world[12]), len(world[21])
     return (
         np.zeros(nq),
         np.zeros((b, 3)),
@@ -51,6 +53,8 @@ def scratch(world: WorldTuple) -> Scratch:
         np.zeros((4 * MAX_SPLIT + 64, 4)),
         np.zeros(g, dtype=np.bool_),
         np.zeros(g, dtype=np.bool_),
+        np.zeros(n),
+        np.zeros((MAX_SPLIT, 2)),
     )
 
 
@@ -301,8 +305,11 @@ def _clearance(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
 
 
 @njit(cache=True, error_model="numpy")
-def _edge_clear(w, qa, qb, ca, lipschitz, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
-    """Whether edge ``qa -> qb`` is certified clear (``ca``: clearance of ``qa``); counts checks.
+def _edge_clear(w, qa, qb, ca, cb, lipschitz, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """Whether edge ``qa -> qb`` is certified clear; counts the checks it makes.
+
+    ``ca``, ``cb`` are the ends' clearances [m]; ``cb`` is NaN when not known yet
+    (it is checked then).
 
     Returns the end's clearance when clear, ``-inf`` when not (the rule of
     :mod:`lynxsim.plan.edges`; intervals on a stack, same verdict as its rounds).
@@ -312,15 +319,15 @@ def _edge_clear(w, qa, qb, ca, lipschitz, margin, grasped, work, counter):  # ty
     for i in range(n):
         length += (qb[i] - qa[i]) ** 2
     length = math.sqrt(length)
-    cb = _clearance(w, qb, grasped, work)
-    counter[0] += 1
+    if math.isnan(cb):
+        cb = _clearance(w, qb, grasped, work)
+        counter[0] += 1
     if not (ca >= margin and cb >= margin):
         return -math.inf
     stack = work[6]
     top = 0
     stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = 0.0, length, ca, cb
-    q = np.empty(n)
-    points = np.empty((MAX_SPLIT, 2))
+    q, points = work[9], work[10]
     while top >= 0:
         s_a, s_b, c_a, c_b = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
         top -= 1
@@ -372,7 +379,9 @@ def _path(w, path, lipschitz, margin, grasped, work):  # type: ignore[no-untyped
     for k in range(path.shape[0] - 1):
         if not ok:
             break
-        c = _edge_clear(w, path[k], path[k + 1], c, lipschitz, margin, grasped, work, counter)
+        c = _edge_clear(
+            w, path[k], path[k + 1], c, math.nan, lipschitz, margin, grasped, work, counter
+        )
         ok = c >= margin
     return ok, counter[0]
 

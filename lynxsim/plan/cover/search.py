@@ -66,7 +66,8 @@ class CoverSearch:
         goal_index: The goal it reaches (-1 if none).
         checks: Configurations checked on the cover.
         samples: Samples drawn by RRT-Connect.
-        search_time_s: Time of the compiled call [s].
+        search_time_s: Wall-clock time of the compiled call [s].
+        search_cpu_s: CPU time of the compiled call [s] (this process's).
     """
 
     status: int
@@ -76,6 +77,7 @@ class CoverSearch:
     checks: int
     samples: int
     search_time_s: float
+    search_cpu_s: float
 
 
 @njit(cache=True, inline="always", error_model="numpy")
@@ -98,8 +100,11 @@ def _distance(a, b):  # type: ignore[no-untyped-def]  # numba
 
 
 @njit(cache=True, error_model="numpy")
-def _extend(w, nodes, parent, clear, size, target, step, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
-    """Grow a tree one step toward ``target``: (new node index or -1, whether it reached it)."""
+def _extend(w, nodes, parent, clear, size, target, tc, step, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """Grow a tree one step toward ``target``: (new node index or -1, whether it reached it).
+
+    ``tc`` is the target's clearance when known (a node of the other tree), else NaN.
+    """
     best, near = math.inf, 0
     for k in range(size[0]):
         d = _distance(nodes[k], target)
@@ -112,7 +117,10 @@ def _extend(w, nodes, parent, clear, size, target, step, lip, margin, grasped, w
         q[i] = target[i] if reached else nodes[near, i] + (target[i] - nodes[near, i]) * step / best
     if size[0] >= nodes.shape[0]:
         return -1, False
-    c = _edge_clear(w, nodes[near], q, clear[near], lip, margin, grasped, work, counter)
+    c = _edge_clear(
+        w, nodes[near], q, clear[near], tc if reached else math.nan, lip, margin, grasped,
+        work, counter,
+    )  # fmt: skip
     if not c >= margin:
         return -1, False
     k = size[0]
@@ -124,23 +132,26 @@ def _extend(w, nodes, parent, clear, size, target, step, lip, margin, grasped, w
 
 
 @njit(cache=True, error_model="numpy")
-def _branch(nodes, parent, k):  # type: ignore[no-untyped-def]  # numba
-    """The nodes from node ``k`` back to its root, (m, n)."""
+def _branch(nodes, parent, clear, k):  # type: ignore[no-untyped-def]  # numba
+    """The nodes from node ``k`` back to its root, (m, n), and their clearances, (m,)."""
     count, j = 1, k
     while parent[j] >= 0:
         j = parent[j]
         count += 1
-    out = np.empty((count, nodes.shape[1]))
+    out, out_c = np.empty((count, nodes.shape[1])), np.empty(count)
     j = k
     for i in range(count):
-        out[i] = nodes[j]
+        out[i], out_c[i] = nodes[j], clear[j]
         j = parent[j]
-    return out
+    return out, out_c
 
 
 @njit(cache=True, error_model="numpy")
 def _dedupe(path):  # type: ignore[no-untyped-def]  # numba
-    """``path`` without vertices within the tolerance of the last kept (as drop_duplicates)."""
+    """Indices (m',) of the vertices of ``path`` kept (as drop_duplicates).
+
+    A vertex is kept when beyond the tolerance of the last kept; the last always is.
+    """
     m = path.shape[0]
     kept = np.empty(m, dtype=np.int64)
     kept[0] = 0
@@ -155,17 +166,22 @@ def _dedupe(path):  # type: ignore[no-untyped-def]  # numba
         else:
             kept[count] = m - 1
             count += 1
-    out = np.empty((count, path.shape[1]))
-    for i in range(count):
-        out[i] = path[kept[i]]
-    return out
+    return kept[:count].copy()
 
 
 @njit(cache=True, error_model="numpy")
-def _edge(w, a, b, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
-    ca = _clearance(w, a, grasped, work)
-    counter[0] += 1
-    return _edge_clear(w, a, b, ca, lip, margin, grasped, work, counter) >= margin
+def _checked(w, q, c, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """``c``, the clearance of ``q`` when known, else checked (NaN: not known)."""
+    if math.isnan(c):
+        counter[0] += 1
+        return _clearance(w, q, grasped, work)
+    return c
+
+
+@njit(cache=True, error_model="numpy")
+def _edge(w, a, b, ca, cb, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """Whether edge ``a -> b`` is certified clear (``ca``, ``cb`` known clearances)."""
+    return _edge_clear(w, a, b, ca, cb, lip, margin, grasped, work, counter) >= margin
 
 
 @njit(cache=True, error_model="numpy")
@@ -177,29 +193,38 @@ def _length(path):  # type: ignore[no-untyped-def]  # numba
 
 
 @njit(cache=True, error_model="numpy")
-def _reduce(w, path, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
-    """Drop interior vertices whose neighbours see each other (as reduce_vertices)."""
+def _reduce(w, path, pc, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """Drop interior vertices whose neighbours see each other (as reduce_vertices).
+
+    ``pc``: the vertices' clearances, (m,); returns the path and its clearances.
+    """
     while path.shape[0] > 2:
         m = path.shape[0]
         ok = np.zeros(m - 2, dtype=np.bool_)
         for k in range(m - 2):
-            ok[k] = _edge(w, path[k], path[k + 2], lip, margin, grasped, work, counter)
+            ok[k] = _edge(
+                w, path[k], path[k + 2], pc[k], pc[k + 2], lip, margin, grasped, work, counter
+            )
         drop = np.zeros(m, dtype=np.bool_)
         for k in range(m - 2):
             if ok[k] and not drop[k]:
                 drop[k + 1] = True
         if not drop.any():
             break
-        path = path[~drop].copy()
-    return path
+        path, pc = path[~drop].copy(), pc[~drop].copy()
+    return path, pc
 
 
 @njit(cache=True, error_model="numpy")
-def _shorten(w, path, lip, margin, grasped, state, shortcuts, work, counter):  # type: ignore[no-untyped-def]  # numba
-    """Vertex removal, random shortcuts, vertex removal (as shorten_path)."""
-    path = _dedupe(path)
+def _shorten(w, path, pc, lip, margin, grasped, state, shortcuts, work, counter):  # type: ignore[no-untyped-def]  # numba
+    """Vertex removal, random shortcuts, vertex removal (as shorten_path).
+
+    ``pc``: the clearances of the vertices of ``path`` (m,), each checked once.
+    """
+    kept = _dedupe(path)
+    path, pc = path[kept], pc[kept]
     if shortcuts > 0:
-        path = _reduce(w, path, lip, margin, grasped, work, counter)
+        path, pc = _reduce(w, path, pc, lip, margin, grasped, work, counter)
     for _ in range(shortcuts):
         m = path.shape[0]
         if m <= 2:
@@ -222,16 +247,23 @@ def _shorten(w, path, lip, margin, grasped, state, shortcuts, work, counter):  #
         joined[i1 + 1] = p1
         joined[i1 + 2] = p2
         joined[i1 + 3 :] = path[i2 + 1 :]
-        candidate = _dedupe(joined)
+        kept = _dedupe(joined)
+        candidate = joined[kept]
         if _length(candidate) > _length(path) - _MIN_GAIN:
             continue
+        c1 = _checked(w, p1, math.nan, grasped, work, counter)
+        c2 = _checked(w, p2, math.nan, grasped, work, counter)
         if (
-            _edge(w, p1, p2, lip, margin, grasped, work, counter)
-            and _edge(w, path[i1], p1, lip, margin, grasped, work, counter)
-            and _edge(w, p2, path[i2 + 1], lip, margin, grasped, work, counter)
+            _edge(w, p1, p2, c1, c2, lip, margin, grasped, work, counter)
+            and _edge(w, path[i1], p1, pc[i1], c1, lip, margin, grasped, work, counter)
+            and _edge(w, p2, path[i2 + 1], c2, pc[i2 + 1], lip, margin, grasped, work, counter)
         ):
-            path = candidate
-    return _reduce(w, path, lip, margin, grasped, work, counter)
+            joined_c = np.empty(joined.shape[0])
+            joined_c[: i1 + 1] = pc[: i1 + 1]
+            joined_c[i1 + 1], joined_c[i1 + 2] = c1, c2
+            joined_c[i1 + 3 :] = pc[i2 + 1 :]
+            path, pc = candidate, joined_c[kept]
+    return _reduce(w, path, pc, lip, margin, grasped, work, counter)[0]
 
 
 @njit(cache=True, error_model="numpy")
@@ -259,11 +291,12 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
             break
         if (
             dist[k] <= 0.0
-            or _edge_clear(w, start, goals[k], c0, lip, margin, grasped, work, counter) >= margin
+            or _edge_clear(w, start, goals[k], c0, cg[k], lip, margin, grasped, work, counter)
+            >= margin
         ):
             raw = np.empty((2, n))
             raw[0], raw[1] = start, goals[k]
-            path = _dedupe(raw)
+            path = raw[_dedupe(raw)]
             return DIRECT, raw, path, k, counter[0], 0
     step = _RANGE_FRACTION * _distance(lower, upper)
     cap = samples + 2
@@ -293,6 +326,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                 clear_a,
                 size_a,
                 target,
+                math.nan,
                 step,
                 lip,
                 margin,
@@ -308,6 +342,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                 clear_b,
                 size_b,
                 target,
+                math.nan,
                 step,
                 lip,
                 margin,
@@ -318,6 +353,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
         if grown < 0:
             continue
         tip = nodes_a[grown].copy() if from_start else nodes_b[grown].copy()
+        tip_c = clear_a[grown] if from_start else clear_b[grown]
         while True:
             if from_start:
                 other, reached = _extend(
@@ -327,6 +363,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                     clear_b,
                     size_b,
                     tip,
+                    tip_c,
                     step,
                     lip,
                     margin,
@@ -342,6 +379,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                     clear_a,
                     size_a,
                     tip,
+                    tip_c,
                     step,
                     lip,
                     margin,
@@ -353,18 +391,22 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                 break
             if reached:
                 ia, ib = (grown, other) if from_start else (other, grown)
-                head = _branch(nodes_a, parent_a, ia)[::-1]
-                tail = _branch(nodes_b, parent_b, ib)
+                head, head_c = _branch(nodes_a, parent_a, clear_a, ia)
+                head, head_c = head[::-1], head_c[::-1]
+                tail, tail_c = _branch(nodes_b, parent_b, clear_b, ib)
                 raw = np.empty((head.shape[0] + tail.shape[0] - 1, n))
-                raw[: head.shape[0]] = head
-                raw[head.shape[0] :] = tail[1:]
+                raw_c = np.empty(raw.shape[0])
+                raw[: head.shape[0]], raw_c[: head.shape[0]] = head, head_c
+                raw[head.shape[0] :], raw_c[head.shape[0] :] = tail[1:], tail_c[1:]
                 root = tail[-1]
                 goal = 0
                 for k in range(k_goals):
                     if _distance(goals[k], root) <= 0.0:
                         goal = k
                         break
-                path = _shorten(w, raw, lip, margin, grasped, state, shortcuts, work, counter)
+                path = _shorten(
+                    w, raw, raw_c, lip, margin, grasped, state, shortcuts, work, counter
+                )
                 return FOUND, raw, path, goal, counter[0], it + 1
     return NOT_FOUND, empty, empty, -1, counter[0], samples
 
@@ -403,7 +445,7 @@ def search_cover(
     Returns:
         The :class:`CoverSearch`.
     """
-    started = time.perf_counter()
+    started, cpu = time.perf_counter(), time.process_time()
     status, raw, path, goal, checks, drawn = _search(
         world,
         np.ascontiguousarray(start, dtype=float),
@@ -418,5 +460,5 @@ def search_cover(
         int(shortcuts),
         work,
     )
-    elapsed = time.perf_counter() - started
-    return CoverSearch(int(status), raw, path, int(goal), int(checks), int(drawn), elapsed)
+    elapsed, cpu = time.perf_counter() - started, time.process_time() - cpu
+    return CoverSearch(int(status), raw, path, int(goal), int(checks), int(drawn), elapsed, cpu)
