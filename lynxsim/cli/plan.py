@@ -22,11 +22,17 @@ __all__ = ["register"]
 
 def _plan(args: argparse.Namespace) -> int:
     from lynxsim.cli.traj import joint_kinematics, write_samples
-    from lynxsim.plan import PlanProgress
+    from lynxsim.errors import InvalidInputError
+    from lynxsim.plan import PlanProgress, UnknownPlannerError
+    from lynxsim.plan.ompl_planners import check_planner
     from lynxsim.plots.trajectory import plot_tool_paths
     from lynxsim.robots import get, plan
     from lynxsim.tasks import load_task
 
+    try:
+        check_planner(args.planner)  # a flag, not a field of the task: named as one
+    except UnknownPlannerError as exc:
+        raise InvalidInputError(f"--planner: {exc}") from None
     task = load_task(args.task)
     robot = get(task.robot)
     out: Path = args.out_dir

@@ -82,6 +82,10 @@ class RayBackend:
     connect_timeout_s: float = CONNECT_TIMEOUT_S
     verbose: bool = False
 
+    def __post_init__(self) -> None:
+        if self.address is not None:
+            _host_port(self.address)  # a malformed address is refused before any work starts
+
     def run(
         self,
         spec: SweepSpec,
@@ -140,6 +144,24 @@ class RayBackend:
                 ray.shutdown()
 
 
+def _host_port(address: str) -> tuple[str, int] | None:
+    """The host and port of ``address``; None for ``auto`` and ``local`` (left to Ray).
+
+    Raises:
+        InvalidInputError: The address is not ``HOST:PORT``, ``ray://HOST:PORT``, ``auto`` or
+            ``local``.
+    """
+    if address in ("auto", "local"):
+        return None
+    host, _, port = address.removeprefix("ray://").rpartition(":")
+    host = host.strip("[]")
+    if not host or not port.isdigit() or not 1 <= int(port) <= 65535:
+        raise InvalidInputError(
+            f"--address {address!r}: expected HOST:PORT, ray://HOST:PORT or auto"
+        )
+    return host, int(port)
+
+
 def _probe(address: str, timeout_s: float) -> None:
     """Check that ``address`` (``HOST:PORT`` or ``ray://HOST:PORT``) accepts a TCP connection.
 
@@ -149,16 +171,11 @@ def _probe(address: str, timeout_s: float) -> None:
         InvalidInputError: The address is not of that form.
         RayUnavailableError: Nothing accepts a connection there within ``timeout_s``.
     """
-    if address in ("auto", "local"):
+    where = _host_port(address)
+    if where is None:
         return
-    host, _, port = address.removeprefix("ray://").rpartition(":")
-    host = host.strip("[]")
-    if not host or not port.isdigit() or not 1 <= int(port) <= 65535:
-        raise InvalidInputError(
-            f"--address {address!r}: expected HOST:PORT, ray://HOST:PORT or auto"
-        )
     try:
-        socket.create_connection((host, int(port)), timeout=timeout_s).close()
+        socket.create_connection(where, timeout=timeout_s).close()
     except OSError as exc:
         why = exc.strerror or str(exc) or type(exc).__name__
         raise RayUnavailableError(

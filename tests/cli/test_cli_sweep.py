@@ -69,8 +69,13 @@ def test_sweep_writes_table_and_maps_inside_the_folder(cli, small, tmp_path):
         (["{small}", "--backend", "spark"], 2, "invalid choice"),
         (["{small}", "--jobs", "0"], 2, "must be between 1 and 256"),
         (["{small}", "--address", "auto"], 1, "--address and --verbose apply to --backend ray"),
+        (
+            ["{small}", "--backend", "ray", "--address", "nan"],
+            1,
+            "lynxsim: error: --address 'nan': expected HOST:PORT, ray://HOST:PORT or auto",
+        ),
     ],
-    ids=["missing", "backend", "jobs", "address"],
+    ids=["missing", "backend", "jobs", "address", "address-form"],
 )
 def test_mistakes_are_one_line(cli, small, tmp_path, args, code, message):
     argv = [a.format(small=small) for a in args]
