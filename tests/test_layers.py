@@ -48,7 +48,7 @@ _BELOW_ROBOTS = _BELOW_SIM | {"sim", "sim.arm", "sim.rrr"}
 _TOP = frozenset({"envs", "sweep", "reproduce", "datasets", "demo"})
 
 ALLOWED: dict[str, frozenset[str]] = {
-    **{name: BASE for name in BASE},
+    **{name: BASE for name in sorted(BASE)},
     "traj": BASE,
     "plan": BASE | {"traj"},
     "arm": BASE | {"traj", "plan"},
@@ -60,7 +60,7 @@ ALLOWED: dict[str, frozenset[str]] = {
     "sim.rrr": BASE | {"sim", "rrr", "traj", "tasks"},
     "robots": _BELOW_ROBOTS,
     "plots": _BELOW_SIM,
-    **{name: _BELOW_ROBOTS | {"robots", "plots"} | _TOP for name in _TOP},
+    **{name: _BELOW_ROBOTS | {"robots", "plots"} | _TOP for name in sorted(_TOP)},
     "cli": _BELOW_ROBOTS | {"robots", "plots", "real", "cli"} | _TOP,
     "__main__": frozenset({"cli"}),
     "models": frozenset(),

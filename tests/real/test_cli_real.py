@@ -161,10 +161,16 @@ def test_a_signal_during_play_stops_every_channel_before_exiting(
             proc.kill()
     assert proc.returncode == code
     assert err.strip().splitlines() == [f"lynxsim: {word}"]
-    with emulator.lock:
-        received = [ln for _, ln in emulator.board.lines]
+    stops = [f"STOP {c}" for c in CHANNELS]
+    deadline = time.monotonic() + 10.0  # the emulator reads what was sent on its own thread
+    while True:
+        with emulator.lock:
+            received = [ln for _, ln in emulator.board.lines]
+        if received[-len(stops) :] == stops or time.monotonic() > deadline:
+            break
+        time.sleep(0.01)
     tail = received[received.index("STOP 0") :]
-    assert tail == [f"STOP {c}" for c in CHANNELS]
+    assert tail == stops
     record = read_log(log)
     assert record.end == "interrupted"
     assert any("STOP sent" in e for _, e in record.events)
