@@ -7,8 +7,9 @@ same rows played one by one (a physics run each, as ``lynxsim play --no-video``
 does), on a sample of them. First, ``planned`` rows (each row planned with the
 compiled planner around its placement, then played) on a coarser grid, in rows
 per second of wall and of CPU time (all threads), with each row's CPU time split
-into the scene's compile, the plan call (of which the exact re-check of the
-timed motion), the physics run and the rest, beside the bare physics of one row
+into the scene's compile, the plan call (of which the exact checks, nearly all
+the re-check of the timed motion, and the build of the scene's sphere cover),
+the physics run and the rest, beside the bare physics of one row
 (``mj_step`` alone, as many steps as its run): the floor no sweep row goes
 below. Every backend starts from an empty folder (no shard reused)::
 
@@ -113,6 +114,7 @@ def _timed_parts(parts: dict[str, float]) -> Iterator[None]:
         (joint_sim, "run_joints", "physics run"),
         (planning, "plan_request", "plan call"),
         (planning.CheckerOracle, "clearance", "of which exact checks"),
+        (planning, "cover_oracle", "of which cover build"),
     ]
     saved = [(owner, name, getattr(owner, name)) for owner, name, _ in stages]
 
