@@ -23,6 +23,7 @@ import collections
 import contextlib
 import dataclasses
 import inspect
+import math
 import os
 import tempfile
 import time
@@ -145,11 +146,14 @@ def _bare_physics(spec: SweepSpec) -> tuple[float, int]:
     model = adapter.model(task.scene)
     presettle_s = inspect.signature(rollout).parameters["presettle_s"].default
     steps = len(adapter.play(task, trajectory).log.time_s) + round(presettle_s / model.opt.timestep)
-    data = mujoco.MjData(model)
-    start = time.process_time()
-    for _ in range(steps):
-        mujoco.mj_step(model, data)
-    return time.process_time() - start, steps
+    best = math.inf
+    for _ in range(3):  # the best of three: the machine may be shared
+        data = mujoco.MjData(model)
+        start = time.process_time()
+        for _ in range(steps):
+            mujoco.mj_step(model, data)
+        best = min(best, time.process_time() - start)
+    return best, steps
 
 
 def _planned(step_mm: float) -> None:
@@ -167,8 +171,13 @@ def _planned(step_mm: float) -> None:
         f"{os.getloadavg()[0]:.2f})"
     )
     other = cpu - parts["scene compile"] - parts["plan call"] - parts["physics run"]
-    split = ", ".join(f"{k} {1e3 * v / rows:.0f}" for k, v in parts.items())
-    print(f"  CPU per row [ms]: {1e3 * cpu / rows:.0f} = {split}, other {1e3 * other / rows:.0f}")
+    ms = {k: f"{1e3 * v / rows:.0f}" for k, v in parts.items()}
+    print(
+        f"  CPU per row [ms]: {1e3 * cpu / rows:.0f} = scene compile {ms['scene compile']} + plan "
+        f"call {ms['plan call']} (of which exact checks {ms['of which exact checks']}, cover "
+        f"build {ms['of which cover build']}) + physics run {ms['physics run']} + other "
+        f"{1e3 * other / rows:.0f}"
+    )
     bare, steps = _bare_physics(spec)
     print(
         f"  bare physics of one row: {1e3 * bare:.0f} ms CPU ({steps} mj_step): at most "
