@@ -237,8 +237,9 @@ class JointRobotIds:
 
 @functools.lru_cache(maxsize=4)
 def _compiled(
-    scene_xml: SceneFile, names: JointRobotNames, scene: Scene, owner: str
+    scene_xml: SceneFile, names: JointRobotNames, scene: Scene, exact: str, owner: str
 ) -> mujoco.MjModel:
+    """The compiled scene; ``exact`` is ``repr(scene)`` (equal scenes may differ in -0.0)."""
     spec = build_scene(parse_scene(scene_xml[0]), scene, owner=owner)
     plain = spec.compile()
     return add_recording_sensors(spec, plain, JointRobotIds.from_model(plain, names).binding(plain))
@@ -266,4 +267,4 @@ def load_joint_scene(
     """
     if not isinstance(scene, Scene):
         raise InvalidInputError(f"scene must be a lynxsim.scene.Scene, got {scene!r}")
-    return copy.copy(_compiled(scene_file(scene_xml), names, scene, owner))
+    return copy.copy(_compiled(scene_file(scene_xml), names, scene, repr(scene), owner))
