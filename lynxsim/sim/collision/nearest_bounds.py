@@ -25,7 +25,7 @@ from lynxsim.errors import InvalidInputError
 from lynxsim.sim.collision.clearance import ClearanceGeometry
 from lynxsim.sim.cover.spheres import cover_geom
 
-__all__ = ["BOUND_TOLERANCE_M", "NearestBounds"]
+__all__ = ["BOUND_TOLERANCE_M", "NearestBounds", "geom_bound"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
@@ -64,7 +64,7 @@ def _sdf(kind, s0, s1, s2, rbound, x, y, z):  # type: ignore[no-untyped-def]  # 
 
 
 @njit(cache=True, error_model="numpy")
-def _bound(  # type: ignore[no-untyped-def]  # numba
+def geom_bound(  # type: ignore[no-untyped-def]  # numba
     xpos,
     xmat,
     s,
@@ -176,7 +176,7 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
                     if weak - BOUND_TOLERANCE_M >= level:
                         low = min(low, weak - BOUND_TOLERANCE_M)
                         continue
-                    b = _bound(
+                    b = geom_bound(
                         xpos,
                         xmat,
                         s,
@@ -197,48 +197,6 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
                     )
                     low = min(low, b)
             out[s, j] = low
-
-
-@njit(cache=True, error_model="numpy")
-def _per_geom(  # type: ignore[no-untyped-def]  # numba
-    xpos,
-    xmat,
-    s,
-    level,
-    extent,
-    reach,
-    first,
-    centres,
-    radii,
-    fixed,
-    kind,
-    size,
-    rbound,
-    pos,
-    rot,
-    j,
-    out,
-):
-    for g in range(xpos.shape[1]):
-        out[g] = _bound(
-            xpos,
-            xmat,
-            s,
-            g,
-            level,
-            extent,
-            reach,
-            first,
-            centres,
-            radii,
-            fixed,
-            kind,
-            size,
-            rbound,
-            pos,
-            rot,
-            j,
-        )
 
 
 class NearestBounds:
@@ -288,7 +246,11 @@ class NearestBounds:
             np.ascontiguousarray(geometry.rot, dtype=f64),
         )
         self.obstacles = len(obstacles)
-        self._geoms = len(carried)
+
+    @property
+    def arrays(self) -> tuple[npt.NDArray[np.float64 | np.int64], ...]:
+        """What :func:`geom_bound` takes after ``level``: the compiled geometry, in order."""
+        return (*self._geo, *self._spheres, *self._obstacles)
 
     def nearest(self, xpos: FloatArray, xmat: FloatArray, below: FloatArray) -> FloatArray:
         """Per state and obstacle, a lower bound of its clearance [m], (N, m).
@@ -304,15 +266,4 @@ class NearestBounds:
         """
         out = np.empty((len(xpos), self.obstacles))
         _nearest(xpos, xmat, *self._geo, *self._spheres, *self._obstacles, below, out)
-        return out
-
-    def per_geom(
-        self, xpos: FloatArray, xmat: FloatArray, s: int, j: int, level: float
-    ) -> FloatArray:
-        """Bound of each carried geom of state ``s`` to obstacle ``j`` [m], (r,).
-
-        Tightened while below ``level`` [m].
-        """
-        out = np.empty(self._geoms)
-        _per_geom(xpos, xmat, s, level, *self._geo, *self._spheres, *self._obstacles, j, out)
         return out
