@@ -4,17 +4,13 @@
 step, in chunks (:func:`chunk_bounds`), on a helper thread where a second CPU
 is free (:func:`~lynxsim.sim.stepping.overlap.share_stepping`), while the
 caller's thread makes the records of the chunks already stepped
-(:class:`~lynxsim.sim.stepping.records.SensedRecorder`). While the robot
-touches, chunks are stepped in Python instead (``mj_step``, the same states)
-so that each step's own contacts are kept rather than found again by posing
-the state (``mj_collision`` costs a third of a step). :class:`Snapshot`
+(:class:`~lynxsim.sim.stepping.records.SensedRecorder`). :class:`Snapshot`
 keeps the state a run starts from, to play it again.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterator
-from dataclasses import replace
 
 import mujoco
 import numpy as np
@@ -25,7 +21,7 @@ from lynxsim.sim.collision import CollisionGroups
 from lynxsim.sim.stepping.commands import RunCommands, whole_controls
 from lynxsim.sim.stepping.log import ProgressFn
 from lynxsim.sim.stepping.overlap import cpu_count, share_stepping
-from lynxsim.sim.stepping.records import SensedChunk, SensedRecorder, StepRecords, contact_list
+from lynxsim.sim.stepping.records import SensedChunk, SensedRecorder, StepRecords
 from lynxsim.sim.stepping.sensors import RecordingLayout
 
 __all__ = ["Snapshot", "chunk_bounds", "native_run"]
@@ -100,16 +96,6 @@ def chunk_bounds(steps: int) -> list[tuple[int, int]]:
     return list(zip([0, *ends[:-1]], ends, strict=True))
 
 
-def _touches(layout: RecordingLayout, chunk: SensedChunk) -> bool:
-    """Whether the state the chunk's last step started from may touch (the contact gate).
-
-    Touching goes on for many steps: the next chunk is then stepped in Python,
-    its steps' own contacts kept, rather than natively with the flagged
-    states posed again.
-    """
-    return bool(layout.gate(chunk.sensordata[-1:])[0])
-
-
 def native_run(
     model: mujoco.MjModel,
     data: mujoco.MjData,
@@ -124,11 +110,9 @@ def native_run(
     The recorded steps are stepped in chunks (:func:`chunk_bounds`), in a
     helper thread where a second CPU is free, while this thread makes the
     records of the chunks already stepped (:class:`SensedRecorder`); the same
-    records either way. A chunk after one whose last state may touch
-    (:func:`_touches`) is stepped in Python, keeping its steps' contacts.
-    ``data`` at rest on entry; on return it holds the last state (with the
-    warnings of the whole run) and ``start`` the state the record starts from.
-    ``progress`` hears of each chunk recorded.
+    records either way. ``data`` at rest on entry; on return it holds the last
+    state (with the warnings of the whole run) and ``start`` the state the
+    record starts from. ``progress`` hears of each chunk recorded.
     """
     full = mujoco.mjtState.mjSTATE_FULLPHYSICS
     state = np.empty(mujoco.mj_stateSize(model, full))
@@ -147,39 +131,19 @@ def native_run(
         )
         return states[0], sensordata[0]
 
-    def loop(controls: FloatArray) -> SensedChunk:
-        """Step in Python (``mj_step``), keeping each step's contacts: the same states."""
-        u = whole_controls(base, commands.ctrl_adr, controls)
-        time, qpos = np.empty(len(u)), np.empty((len(u), model.nq))
-        sensed = np.empty((len(u), model.nsensordata))
-        contacts = []
-        step, ctrl = mujoco.mj_step, data.ctrl
-        for r, row in enumerate(u):
-            ctrl[:] = row
-            step(model, data)
-            time[r], qpos[r], sensed[r] = data.time, data.qpos, data.sensordata
-            contacts.append(contact_list(data))  # of the state the step started from
-        return SensedChunk(time, qpos, sensed, contacts=tuple(contacts))
-
     def chunks() -> Iterator[SensedChunk]:
         if len(commands.hold):
             play(commands.hold)
         data.time = 0.0  # the record starts here; warnings of the hold still count
         start.take(model, data)
         bounds = chunk_bounds(len(commands.ctrl))
-        touching = False
         for i, (a, b) in enumerate(bounds):
-            if touching:  # likely to touch on: the steps' own contacts kept
-                chunk = loop(commands.ctrl[a:b])
-            else:
-                states, stepped = play(commands.ctrl[a:b])
-                chunk = SensedChunk(states[:, 0], states[:, 1 : 1 + model.nq], stepped)
-            touching = _touches(layout, chunk)
+            states, stepped = play(commands.ctrl[a:b])
+            final = None
             if i == len(bounds) - 1:
                 mujoco.mj_forward(model, data)  # the last state's positions and contacts
                 final = np.array(data.sensordata)
-                chunk = replace(chunk, final=final, final_contacts=contact_list(data))
-            yield chunk
+            yield SensedChunk(states[:, 0], states[:, 1 : 1 + model.nq], stepped, final)
 
     recorder = SensedRecorder(model, groups, layout, len(commands.ctrl))
 

@@ -22,24 +22,10 @@ from lynxsim.sim.collision import ClearanceGeometry, CollisionGroups, classify_c
 from lynxsim.sim.collision.minima import ClearanceMinima
 from lynxsim.sim.stepping.sensors import RecordingLayout
 
-__all__ = ["ContactList", "SensedChunk", "SensedRecorder", "StepRecords", "contact_list"]
+__all__ = ["SensedChunk", "SensedRecorder", "StepRecords"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
-
-
-ContactList = tuple[npt.NDArray[np.int32], FloatArray]
-"""MuJoCo's contacts of a state: each one's geom pair, (n, 2), and distance, (n,) [m]."""
-
-_NO_CONTACT: ContactList = (np.empty((0, 2), dtype=np.int32), np.empty(0))
-
-
-def contact_list(data: mujoco.MjData) -> ContactList:
-    """A copy of the contacts in ``data`` (``mj_collision``'s, or a step's of the state it left)."""
-    if not data.ncon:
-        return _NO_CONTACT
-    contact = data.contact
-    return np.array(contact.geom), np.array(contact.dist)
 
 
 class StepRecords:
@@ -98,20 +84,16 @@ class StepRecords:
         carried forward (``np.maximum.accumulate``); steps after k none
         until they are added.
         """
-        self.add_contact_list(k, contact_list(data))
-
-    def add_contact_list(self, k: int, contacts: ContactList) -> None:
-        """Record a contact list (:func:`contact_list`) as step k's (steps in order)."""
-        geoms, dist = contacts
-        n, p = len(dist), self._count
+        n, p = data.ncon, self._count
         self.contact_start[k] = p
         if n:
             if p + n > len(self._dist):
                 grow = max(n, len(self._dist))
                 self._geoms = np.concatenate([self._geoms, np.empty((grow, 2), dtype=np.intp)])
                 self._dist = np.concatenate([self._dist, np.empty(grow)])
-            self._geoms[p : p + n] = geoms
-            self._dist[p : p + n] = dist
+            contact = data.contact
+            self._geoms[p : p + n] = contact.geom
+            self._dist[p : p + n] = contact.dist
             self._count = p + n
         self.contact_start[k + 1] = self._count
 
@@ -157,22 +139,12 @@ class SensedChunk:
         sensordata: ``sensordata`` written by each step, (K, nsensordata).
         final: ``sensordata`` of a forward pass at the last state if this is
             the run's last chunk, (nsensordata,); else None.
-        contacts: Per step, MuJoCo's contacts of the state it started from
-            (those its forward pass found), where the stepping kept them
-            (a chunk stepped in Python), (K,); None where not kept.
-        final_contacts: The contacts of ``final``'s forward pass, if kept.
     """
 
     time: FloatArray
     qpos: FloatArray
     sensordata: FloatArray
     final: FloatArray | None = None
-    contacts: tuple[ContactList | None, ...] | None = None
-    final_contacts: ContactList | None = None
-
-    def contact_rows(self) -> tuple[ContactList | None, ...]:
-        """:attr:`contacts`, one entry per step (None where not kept)."""
-        return self.contacts if self.contacts is not None else (None,) * len(self.time)
 
 
 class SensedRecorder:
@@ -182,10 +154,9 @@ class SensedRecorder:
     step's forward pass sees the state it starts from), so a chunk's steps are
     processed as it arrives but for its last, which waits for the next chunk
     (the run's last chunk comes with ``final``). Processing cuts the records
-    out of the sensors (:meth:`RecordingLayout.split`), takes the contact
-    lists of the states the contact gate flags (those the stepping kept, from
-    the next step's own forward pass; the others posed again,
-    ``mj_kinematics`` + ``mj_collision``) and finds each obstacle's smallest clearance
+    out of the sensors (:meth:`RecordingLayout.split`), poses the states the
+    contact gate flags again (``mj_kinematics`` + ``mj_collision``) for their
+    contact lists and finds each obstacle's smallest clearance
     (:class:`~lynxsim.sim.collision.minima.ClearanceMinima`: exact distances
     only where the compiled bounds say the minimum could change; the
     clearances of every state are computed when the log's are read). Each
@@ -225,12 +196,9 @@ class SensedRecorder:
                 np.concatenate([p.qpos, chunk.qpos]),
                 np.concatenate([p.sensordata, chunk.sensordata]),
                 chunk.final,
-                p.contact_rows() + chunk.contact_rows(),
-                chunk.final_contacts,
             )
-        rows = chunk.contact_rows()
         if chunk.final is not None:
-            self._process(chunk, chunk.final, rows[1:] + (chunk.final_contacts,))
+            self._process(chunk, chunk.final)
             self._pending = None
             return
         last = len(chunk.time) - 1
@@ -238,11 +206,8 @@ class SensedRecorder:
             self._process(
                 SensedChunk(chunk.time[:last], chunk.qpos[:last], chunk.sensordata[:last]),
                 chunk.sensordata[last],
-                rows[1:],
             )
-        self._pending = SensedChunk(
-            chunk.time[last:], chunk.qpos[last:], chunk.sensordata[last:], None, rows[last:]
-        )
+        self._pending = SensedChunk(chunk.time[last:], chunk.qpos[last:], chunk.sensordata[last:])
 
     @property
     def done(self) -> int:
@@ -261,20 +226,7 @@ class SensedRecorder:
         np.maximum.accumulate(record.contact_start, out=record.contact_start)
         return record
 
-    def _process(
-        self,
-        chunk: SensedChunk,
-        next_row: FloatArray,
-        contacts: tuple[ContactList | None, ...],
-    ) -> None:
-        """Make the records of the chunk's states.
-
-        Args:
-            chunk: The steps (their ``contacts`` are not read: see ``contacts``).
-            next_row: ``sensordata`` of the step after the chunk's last.
-            contacts: Each state's contacts where the stepping kept them (from
-                the next step's forward pass), else None, (K,).
-        """
+    def _process(self, chunk: SensedChunk, next_row: FloatArray) -> None:
         model, record = self._model, self.record
         if self._data is None:  # made here: in the consumer thread, while the stepping goes on
             self._data = mujoco.MjData(model)
@@ -292,10 +244,6 @@ class SensedRecorder:
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
         qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
         for k in np.flatnonzero(sensors.gate).tolist():
-            kept = contacts[k]
-            if kept is not None:  # the step's own forward pass found them
-                record.add_contact_list(start + k, kept)
-                continue
             qpos[:] = chunk.qpos[k]
             kinematics(model, data)
             collision(model, data)

@@ -264,20 +264,12 @@ class RecordingLayout:
             final: ``sensordata`` of a forward pass at the last state, (nsensordata,).
         """
         at = np.concatenate([stepped[1:], final[None]])  # row k: the state step k reached
+        touching = at[:, self.touch_any] > at[:, self.touch_payload].sum(axis=2)
+        gate = touching.any(axis=1) | (at[:, self.touch_obstacle] > 0.0).any(axis=1)
         return SensorRecords(
             tool=at[:, self.tool],
             geom_xpos=at[:, self.geom_pos],
             geom_xmat=at[:, self.geom_mat],
             force=stepped[:, self.force],
-            gate=self.gate(at),
+            gate=gate,
         )
-
-    def gate(self, rows: FloatArray) -> BoolArray:
-        """Whether a contact that may count exists in the states of these rows, (S,).
-
-        Args:
-            rows: ``sensordata`` whose position stage describes each state, (S, nsensordata).
-        """
-        touching = rows[:, self.touch_any] > rows[:, self.touch_payload].sum(axis=2)
-        out: BoolArray = touching.any(axis=1) | (rows[:, self.touch_obstacle] > 0.0).any(axis=1)
-        return out

@@ -107,43 +107,6 @@ def test_a_run_without_a_helper_thread_logs_the_same(monkeypatch):
         np.testing.assert_array_equal(getattr(alone.log, name), getattr(shared.log, name))
 
 
-def _hook(k: int, data: mujoco.MjData) -> None:
-    """A step hook: the run then records in a Python loop, each state posed."""
-
-
-def test_chunks_stepped_in_python_while_touching_log_what_the_loop_logs(monkeypatch):
-    """Chunks stepped in Python while touching give the Python loop's log, bit for bit.
-
-    Where the last state stepped touches, the next chunk is stepped in Python
-    and its steps' own contacts are kept (not posed again); without those
-    chunks (every flagged state posed again) the log is the same.
-    """
-    task = THREE_OBSTACLES
-    trajectory = build_trajectory(task, TrajectoryKind.QUINTIC)
-    gripper = pick_and_place_gripper(trajectory.duration)
-    model = load_arm_scene(task.scene)
-    loop = play_arm(model, trajectory, task=task.name, gripper_cmd=gripper, on_step=_hook)
-    kept: list[int] = []
-    contact_list = native_module.contact_list
-
-    def counted(data: mujoco.MjData):  # type: ignore[no-untyped-def]
-        kept.append(data.ncon)
-        return contact_list(data)
-
-    monkeypatch.setattr(native_module, "contact_list", counted)
-    mixed = play_arm(model, trajectory, task=task.name, gripper_cmd=gripper)
-    assert len(kept) > 2 * native_module._CHUNK_FIRST  # whole chunks stepped in Python
-    monkeypatch.setattr(native_module, "_touches", lambda layout, chunk: False)  # all native
-    native = play_arm(model, trajectory, task=task.name, gripper_cmd=gripper)
-    assert len(loop.log.contact_step) > 0  # the run touches: contacts are compared
-    for run in (mixed, native):
-        assert run.report == loop.report
-        for name in ("time_s", "qpos", "force", "tool", "contact_step", "contact_geoms"):
-            np.testing.assert_array_equal(getattr(run.log, name), getattr(loop.log, name))
-        np.testing.assert_array_equal(run.log.contact_dist, loop.log.contact_dist)
-        np.testing.assert_array_equal(run.log.clearance_m, loop.log.clearance_m)
-
-
 def test_no_steps_make_no_chunks():
     assert chunk_bounds(0) == []
 
