@@ -10,6 +10,8 @@ on random arm states that reach into the obstacles (penetration included).
 
 from __future__ import annotations
 
+import itertools
+
 import mujoco
 import numpy as np
 from numba import njit
@@ -22,6 +24,7 @@ from lynxsim.sim.arm.playback import arm_binding
 from lynxsim.sim.collision import ClearanceGeometry, clearances_of_states
 from lynxsim.sim.collision.minima import ClearanceMinima
 from lynxsim.sim.collision.native_distance import geom_distance, geom_distance_address
+from lynxsim.sim.collision.nearest_bounds import NearestBounds
 
 
 @njit(cache=True)
@@ -80,3 +83,34 @@ def test_compiled_minima_are_the_argmins_of_every_clearance() -> None:
         np.testing.assert_array_equal(minima.value, want.min(axis=0))
         np.testing.assert_array_equal(minima.step, want.argmin(axis=0))
         assert 0 < minima.exact_calls < want.size  # the bounds ruled states out
+
+
+def test_bounds_kept_along_a_motion_never_exceed_the_clearance() -> None:
+    """A geom's bound carried to later states (less how far the geom moved) stays below."""
+    rng = np.random.default_rng(11)
+    scene = Scene(obstacles=random_obstacles(rng, 8, keep_free=(REPORT_CUBE.position,)))
+    model = load_arm_scene(scene)
+    binding = arm_binding(model)
+    groups = binding.groups
+    data = mujoco.MjData(model)
+    carried = np.flatnonzero(groups.carried)
+    ends = rng.uniform(LYNX_ARM.q_min, LYNX_ARM.q_max, size=(4, 5))
+    s = np.linspace(0.0, 1.0, 150)[:, None]
+    path = np.concatenate([a + s * (b - a) for a, b in itertools.pairwise(ends)])
+    qpos = np.repeat(np.array(model.qpos0)[None], len(path), axis=0)
+    qpos[:, binding.qpos_adr] = path
+    xpos, xmat = np.empty((len(path), len(carried), 3)), np.empty((len(path), len(carried), 9))
+    for k, q in enumerate(qpos):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        xpos[k], xmat[k] = data.geom_xpos[carried], data.geom_xmat[carried]
+    exact = clearances_of_states(model, data, groups, qpos, xpos, xmat)
+    bounds = NearestBounds(model, data, ClearanceGeometry.of(model, data, groups), 1.0)
+    for below in (np.full(8, 1.0), exact.min(axis=0), exact.min(axis=0) + 0.05):
+        low = bounds.nearest(xpos, xmat, below)
+        assert (low <= exact).all()
+        assert (low > exact - 0.2).mean() > 0.5  # and they are not all vacuous
+        alone = np.concatenate(
+            [bounds.nearest(xpos[k : k + 1], xmat[k : k + 1], below) for k in range(len(xpos))]
+        )
+        assert (low != alone).any()  # bounds were carried from state to state
