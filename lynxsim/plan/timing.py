@@ -48,6 +48,9 @@ DEFAULT_MAX_REPAIRS = 6
 SPEED_SLACK = 1e-6
 """Relative slack on the speed bound ``||v||_2`` (the limit check admits 1e-9) [-]."""
 
+_ASK_BATCH = 16
+"""Most samples asked of the exact world in one round of the branch and bound [-]."""
+
 _PAIR_SLACK_M = 1e-7
 """How far above the best an interval's bound is asked to rise, beyond rounding [m]."""
 
@@ -139,6 +142,8 @@ def _screened(
         index = np.flatnonzero(~known & (level > -np.inf))
         if not index.size:
             return False
+        if index.size > _ASK_BATCH:  # the lowest bounds first: they hold the minima
+            index = np.sort(index[np.argpartition(c[index], _ASK_BATCH)[:_ASK_BATCH]])
         levels = np.where(tried[index], np.inf, level[index])
         c[index] = query_below(oracle, q[index], grasped, levels)
         known[index] = c[index] < levels  # at the level: a bound of it, no value

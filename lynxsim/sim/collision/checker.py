@@ -266,13 +266,14 @@ class CollisionChecker:
         posed = np.empty_like(states)
         xpos = np.empty((count, len(carried), 3))
         xmat = np.empty((count, len(carried), 9)) if level is not None else xpos
+        qpos, geom_xpos, geom_xmat = d.qpos, d.geom_xpos, d.geom_xmat  # views, made once
         for k in range(count):  # pass 1: contacts, and where every geom is
             if any(pair in hits for pair in self._touching(states[k], grasped)):
                 out[k] = -np.inf
-            posed[k] = d.qpos  # the payload held, if it is
-            xpos[k] = d.geom_xpos[carried]
+            posed[k] = qpos  # the payload held, if it is
+            xpos[k] = geom_xpos[carried]
             if level is not None:
-                xmat[k] = d.geom_xmat[carried]
+                xmat[k] = geom_xmat[carried]
         if len(obstacles) == 0 or len(carried) == 0 or count == 0:
             return out
         start = np.full(count, limit) if level is None else level
@@ -280,22 +281,26 @@ class CollisionChecker:
         if level is not None:  # a vector whose bound reaches its level keeps the level
             near = self._bounds().nearest(xpos, xmat, np.full(len(obstacles), level.max()))
             ask &= near.min(axis=1) < level
+        rows = np.flatnonzero(ask)
+        if rows.size == 0:
+            return out
         # Bounding spheres against the obstacles' boxes: a few array operations
         # for the whole batch (the planner asks small batches, many times).
         centre, half = obstacle_boxes(m, d, g)
-        outside = np.abs(xpos[:, :, None, :] - centre) - half
-        bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (N, r, m)
+        outside = np.abs(xpos[rows][:, :, None, :] - centre) - half
+        bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (R, r, m)
         bounds -= np.asarray(m.geom_rbound)[carried][None, :, None]
-        flat = bounds.reshape(count, -1)  # (N, r * m)
+        flat = bounds.reshape(len(rows), -1)  # (R, r * m)
         order = np.argsort(flat, axis=1)
         low = np.take_along_axis(flat, order, axis=1)
         pairs = len(obstacles)
         geoms, targets = carried.tolist(), obstacles.tolist()
-        for k in np.flatnonzero(ask & (low[:, 0] < start)).tolist():
+        for r in np.flatnonzero(low[:, 0] < start[rows]).tolist():
+            k = int(rows[r])
             d.qpos[:] = posed[k]  # pass 2: exact distances of the pairs that may be near
             mujoco.mj_kinematics(m, d)
             best = float(start[k])
-            for index, bound in zip(order[k].tolist(), low[k].tolist(), strict=True):
+            for index, bound in zip(order[r].tolist(), low[r].tolist(), strict=True):
                 if bound >= best:
                     break
                 i, j = divmod(index, pairs)
