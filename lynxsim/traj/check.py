@@ -361,7 +361,7 @@ def _clearly_within(traj: Trajectory, bounds: FloatArray) -> bool:
     h = np.concatenate(lengths)
     peak, slack = _piece_peaks(np.concatenate(parts), h, np.concatenate(durations))
     top = (peak + slack[:, None]).max(axis=2)  # (4, 2, n)
-    if (top[0] - bounds[0] > 0.5 * LIMIT_TOL).any():
+    if not np.isfinite(top).all() or (top[0] - bounds[0] > 0.5 * LIMIT_TOL).any():
         return False
     return all(
         not (top[order] > bounds[order] * (1.0 + 0.5 * LIMIT_RTOL)).any() for order in orders[1:]
