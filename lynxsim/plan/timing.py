@@ -48,7 +48,7 @@ DEFAULT_MAX_REPAIRS = 6
 SPEED_SLACK = 1e-6
 """Relative slack on the speed bound ``||v||_2`` (the limit check admits 1e-9) [-]."""
 
-_ASK_BATCH = 16
+_ASK_BATCH = 64
 """Most samples asked of the exact world in one round of the branch and bound [-]."""
 
 _PAIR_SLACK_M = 1e-7
