@@ -37,10 +37,11 @@ MAX_SPLIT = 64
 
 Scratch = tuple[
     FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
-    npt.NDArray[np.bool_], FloatArray, FloatArray, FloatArray, npt.NDArray[np.bool_], FloatArray,
+    npt.NDArray[np.bool_], npt.NDArray[np.bool_], FloatArray, FloatArray, FloatArray,
+    npt.NDArray[np.bool_], FloatArray,
 ]  # fmt: skip
 """Work arrays of one world: full state, body and geom frames, sphere centres, stack, flags
-(frame made), an edge's point and new points, cluster centres, flags
+(clusters placed, frame made), an edge's point and new points, cluster centres, flags
 (spheres placed), the (geom, obstacle) lower bounds."""
 
 
@@ -57,6 +58,7 @@ def scratch(world: WorldTuple) -> Scratch:
         np.zeros((g, 3, 3)),
         np.zeros((s, 3)),
         np.zeros((4 * MAX_SPLIT + 64, 4)),
+        np.zeros(g, dtype=np.bool_),
         np.zeros(g, dtype=np.bool_),
         np.zeros(n),
         np.zeros((MAX_SPLIT, 2)),
@@ -185,11 +187,11 @@ def _support_extent(kind, mat, size, k, nx, ny, nz):  # type: ignore[no-untyped-
 @njit(cache=True, inline="always", error_model="numpy")
 def _place(g, w, work):  # type: ignore[no-untyped-def]  # numba
     """Orientation of geom ``g`` and centres of its clusters into the scratch (once per check)."""
-    framed = work[7]
+    framed = work[8]
     if framed[g]:
         return
     gbody, gmat_l, cstart, local = w[12], w[14], w[42], w[44]
-    xmat, gpos, gmat, cc = work[2], work[3], work[4], work[10]
+    xmat, gpos, gmat, cc = work[2], work[3], work[4], work[11]
     b = gbody[g]
     for r in range(3):
         for c in range(3):
@@ -240,7 +242,7 @@ def _near(g, kind, pos, mat, size, k, best, w, work):  # type: ignore[no-untyped
     primitive; a cluster whose bound is at least ``best`` (and positive) is skipped.
     """
     cstart, sstart, crad, radius, local = w[42], w[43], w[45], w[21], w[20]
-    gpos, gmat, cen, cc, placed = work[3], work[4], work[5], work[10], work[11]
+    gpos, gmat, cen, cc, placed = work[3], work[4], work[5], work[11], work[12]
     _place(g, w, work)
     for c in range(cstart[g], cstart[g + 1]):
         bound = _point_distance(cc[c, 0], cc[c, 1], cc[c, 2], kind, pos, mat, size, k) - crad[c]
@@ -286,8 +288,8 @@ def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
         if tflag[tstart[t] + k] != 0 or (x == k and k > 0 and tflag[tstart[t] + k - 1] != 0):
             return -math.inf
     _forward(w, q, grasped, work)
-    gpos, gmat, cen, cc, placed, bounds = work[3], work[4], work[5], work[10], work[11], work[12]
-    framed = work[7]
+    gpos, gmat, cen, cc, placed, bounds = work[3], work[4], work[5], work[11], work[12], work[13]
+    framed = work[8]
     for c in range(placed.shape[0]):
         placed[c] = False
     for g in range(framed.shape[0]):
@@ -392,7 +394,7 @@ def _edge_clear(w, qa, qb, ca, cb, lipschitz, margin, grasped, work, counter):  
     stack = work[6]
     top = 0
     stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3] = 0.0, length, ca, cb
-    q, points = work[8], work[9]
+    q, points = work[9], work[10]
     while top >= 0:
         s_a, s_b, c_a, c_b = stack[top, 0], stack[top, 1], stack[top, 2], stack[top, 3]
         top -= 1
