@@ -27,7 +27,6 @@ from lynxsim.scene import TABLE, Box, Cylinder, Scene, Sphere
 from lynxsim.sim.arm.model import load_arm_scene
 from lynxsim.sim.arm.playback import arm_checker
 from lynxsim.sim.cover import DEFAULT_SLACK_M, cover_geom, cover_world
-from lynxsim.sim.cover.clusters import CLUSTER_SIZE
 from lynxsim.sim.planning import PLANNING_CAP_M, CheckerOracle, cover_oracle
 
 CONFIGS_PER_SHAPE = 100_000
@@ -106,19 +105,6 @@ def test_the_arm_cover_reports_its_size_and_slack():
     assert 0.0 < report.slack_m <= DEFAULT_SLACK_M
     assert report.self_pairs > 0
     assert report.fixed_pairs > 0
-
-
-def test_every_sphere_lies_in_its_cluster_and_its_geom_bound():
-    checker = arm_checker(load_arm_scene(Scene((), TABLE)))
-    world, _ = cover_world(checker, cap_m=PLANNING_CAP_M)
-    for g in range(len(world.geom_body)):
-        for c in range(world.geom_clu_start[g], world.geom_clu_start[g + 1]):
-            s = slice(world.clu_sph_start[c], world.clu_sph_start[c + 1])
-            assert 1 <= s.stop - s.start <= CLUSTER_SIZE
-            reach = np.linalg.norm(world.sph_local[s] - world.clu_centre[c], axis=1)
-            assert (reach + world.sph_radius[s] <= world.clu_radius[c] + 1e-12).all()
-            outer = np.linalg.norm(world.sph_local[s], axis=1) + world.sph_radius[s]
-            assert (outer <= world.geom_rbound[g] + 1e-12).all()
 
 
 @pytest.mark.slow

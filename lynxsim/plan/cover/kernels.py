@@ -28,28 +28,21 @@ from lynxsim.plan.cover.world import (
 
 __all__ = ["MAX_SPLIT", "batch_clearance", "clearance", "edge_clear", "path_clear", "scratch"]
 
-no_refcounts = njit(cache=True, error_model="numpy", _nrt=False)  # type: ignore[call-overload]
-"""Compiles a check that allocates nothing without numba's reference counting: a function
-that takes the world's many arrays would else count references to each of them per call."""
-
 MAX_SPLIT = 64
 """Most new points one round puts into one interval [-] (as :mod:`lynxsim.plan.edges`)."""
 
 Scratch = tuple[
     FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
-    npt.NDArray[np.bool_], npt.NDArray[np.bool_], FloatArray, FloatArray, FloatArray,
-    npt.NDArray[np.bool_], FloatArray,
+    npt.NDArray[np.bool_], npt.NDArray[np.bool_], FloatArray, FloatArray,
 ]  # fmt: skip
-"""Work arrays of one world: full state, body and geom frames, sphere centres, stack, flags
-(clusters placed, frame made), an edge's point and new points, cluster centres, flags
-(spheres placed), the (geom, obstacle) lower bounds."""
+"""Work arrays of one world: full state, body and geom frames, sphere centres, stack, flags,
+and an edge's point and new points."""
 
 
 def scratch(world: WorldTuple) -> Scratch:
     """Fresh work arrays for :func:`clearance` on ``world`` (not shared between threads)."""
     nq, n, b = len(world[0]), len(world[1]), len(world[3])
     g, s = len(world[12]), len(world[21])
-    c, m = len(world[45]), len(world[22])
     return (
         np.zeros(nq),
         np.zeros((b, 3)),
@@ -62,9 +55,6 @@ def scratch(world: WorldTuple) -> Scratch:
         np.zeros(g, dtype=np.bool_),
         np.zeros(n),
         np.zeros((MAX_SPLIT, 2)),
-        np.zeros((c, 3)),
-        np.zeros(c, dtype=np.bool_),
-        np.zeros(g * m),
     )
 
 
@@ -84,8 +74,7 @@ def _forward(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
     jtype, jaxis, jpos, jqadr = w[8], w[9], w[10], w[11]
     gbody, gpos_l, groles = w[12], w[13], w[19]
     qfull, xpos, xmat, gpos = work[0], work[1], work[2], work[3]
-    for i in range(base.shape[0]):
-        qfull[i] = base[i]
+    qfull[:] = base
     for i in range(qadr.shape[0]):
         qfull[qadr[i]] = q[i]
     for r in range(3):
@@ -185,13 +174,11 @@ def _support_extent(kind, mat, size, k, nx, ny, nz):  # type: ignore[no-untyped-
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _place(g, w, work):  # type: ignore[no-untyped-def]  # numba
-    """Orientation of geom ``g`` and centres of its clusters into the scratch (once per check)."""
-    framed = work[8]
+def _frame(w, g, work, framed):  # type: ignore[no-untyped-def]  # numba
+    """World orientation of geom ``g`` into the scratch (once per check)."""
     if framed[g]:
         return
-    gbody, gmat_l, cstart, local = w[12], w[14], w[42], w[44]
-    xmat, gpos, gmat, cc = work[2], work[3], work[4], work[11]
+    gbody, gmat_l, xmat, gmat = w[12], w[14], work[2], work[4]
     b = gbody[g]
     for r in range(3):
         for c in range(3):
@@ -200,23 +187,17 @@ def _place(g, w, work):  # type: ignore[no-untyped-def]  # numba
                 + xmat[b, r, 1] * gmat_l[g, 1, c]
                 + xmat[b, r, 2] * gmat_l[g, 2, c]
             )
-    for c in range(cstart[g], cstart[g + 1]):
-        for r in range(3):
-            cc[c, r] = (
-                gpos[g, r]
-                + gmat[g, r, 0] * local[c, 0]
-                + gmat[g, r, 1] * local[c, 1]
-                + gmat[g, r, 2] * local[c, 2]
-            )
     framed[g] = True
 
 
 @njit(cache=True, inline="always", error_model="numpy")
-def _spheres(g, c, sstart, local, gpos, gmat, cen, placed):  # type: ignore[no-untyped-def]  # numba
-    """World centres of the spheres of cluster ``c`` of geom ``g`` (once per check)."""
-    if placed[c]:
+def _centres(w, g, work, done):  # type: ignore[no-untyped-def]  # numba
+    """World centres of geom ``g``'s spheres into the scratch (once per check)."""
+    if done[g]:
         return
-    for s in range(sstart[c], sstart[c + 1]):
+    _frame(w, g, work, work[8])
+    start, local, gpos, gmat, cen = w[18], w[20], work[3], work[4], work[5]
+    for s in range(start[g], start[g + 1]):
         for r in range(3):
             cen[s, r] = (
                 gpos[g, r]
@@ -224,45 +205,13 @@ def _spheres(g, c, sstart, local, gpos, gmat, cen, placed):  # type: ignore[no-u
                 + gmat[g, r, 1] * local[s, 1]
                 + gmat[g, r, 2] * local[s, 2]
             )
-    placed[c] = True
+    done[g] = True
 
 
-@njit(cache=True, inline="always", error_model="numpy")
-def _gap(x, i, y, j, r):  # type: ignore[no-untyped-def]  # numba
-    """Distance [m] between balls of radius sum ``r`` centred at rows ``x[i]``, ``y[j]``."""
-    dx, dy, dz = x[i, 0] - y[j, 0], x[i, 1] - y[j, 1], x[i, 2] - y[j, 2]
-    return math.sqrt(dx * dx + dy * dy + dz * dz) - r
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _near(g, kind, pos, mat, size, k, best, w, work):  # type: ignore[no-untyped-def]  # numba
-    """The least ``distance - radius`` of geom ``g``'s spheres to primitive ``k`` below ``best``.
-
-    Returns ``best`` when none is below it, ``-inf`` when a sphere touches the
-    primitive; a cluster whose bound is at least ``best`` (and positive) is skipped.
-    """
-    cstart, sstart, crad, radius, local = w[42], w[43], w[45], w[21], w[20]
-    gpos, gmat, cen, cc, placed = work[3], work[4], work[5], work[11], work[12]
-    _place(g, w, work)
-    for c in range(cstart[g], cstart[g + 1]):
-        bound = _point_distance(cc[c, 0], cc[c, 1], cc[c, 2], kind, pos, mat, size, k) - crad[c]
-        if bound >= best and bound > 0.0:
-            continue
-        _spheres(g, c, sstart, local, gpos, gmat, cen, placed)
-        for s in range(sstart[c], sstart[c + 1]):
-            d = _point_distance(cen[s, 0], cen[s, 1], cen[s, 2], kind, pos, mat, size, k)
-            d -= radius[s]
-            if d <= 0.0:
-                return -math.inf
-            if d < best:
-                best = d
-    return best
-
-
-@njit(cache=True, inline="always", error_model="numpy")
-def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
+@njit(cache=True, error_model="numpy")
+def _clearance(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
     """The cover's clearance of ``q`` (n,) [m]; see :mod:`lynxsim.plan.cover.world`."""
-    gtype, gsize, grb, roles, local = w[15], w[16], w[17], w[19], w[20]
+    gtype, gsize, grb, start, roles, radius = w[15], w[16], w[17], w[18], w[19], w[21]
     otype, opos, omat, osize, snorm, soff = w[22], w[23], w[24], w[25], w[26], w[27]
     pa, pb, ftype, fpos, fmat, fsize, fpg, fpf, sc = (
         w[28],
@@ -275,7 +224,6 @@ def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
         w[35],
         w[36],
     )
-    cstart, sstart, crad, radius = w[42], w[43], w[45], w[21]
     if sc[2] > 0.0:
         return -math.inf
     tj, tlo, tstep, tstart, tflag = w[37], w[38], w[39], w[40], w[41]
@@ -288,13 +236,11 @@ def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
         if tflag[tstart[t] + k] != 0 or (x == k and k > 0 and tflag[tstart[t] + k - 1] != 0):
             return -math.inf
     _forward(w, q, grasped, work)
-    gpos, gmat, cen, cc, placed, bounds = work[3], work[4], work[5], work[11], work[12], work[13]
-    framed = work[8]
-    for c in range(placed.shape[0]):
-        placed[c] = False
-    for g in range(framed.shape[0]):
-        framed[g] = False
+    gpos, gmat, cen = work[3], work[4], work[5]
     ng = gtype.shape[0]
+    done, framed = work[7], work[8]
+    done[:] = False
+    framed[:] = False
     for g in range(ng):
         if roles[g] != 0:
             continue
@@ -303,28 +249,21 @@ def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
             height = nx * gpos[g, 0] + ny * gpos[g, 1] + nz * gpos[g, 2] - soff[h]
             if height - grb[g] > 0.0:
                 continue
-            _place(g, w, work)
+            _frame(w, g, work, framed)
             if height - _support_extent(gtype[g], gmat, gsize, g, nx, ny, nz) <= 0.0:
                 return -math.inf
-    # Self pairs, coarse to fine: the geoms' bounding spheres, their clusters', the spheres.
     for k in range(pa.shape[0]):
         a, b = pa[k], pb[k]
-        if _gap(gpos, a, gpos, b, grb[a] + grb[b]) > 0.0:
+        dx, dy, dz = gpos[a, 0] - gpos[b, 0], gpos[a, 1] - gpos[b, 1], gpos[a, 2] - gpos[b, 2]
+        if math.sqrt(dx * dx + dy * dy + dz * dz) - grb[a] - grb[b] > 0.0:
             continue
-        _place(a, w, work)
-        _place(b, w, work)
-        for i in range(cstart[a], cstart[a + 1]):
-            if _gap(cc, i, gpos, b, crad[i] + grb[b]) > 0.0:
-                continue
-            for j in range(cstart[b], cstart[b + 1]):
-                if _gap(cc, i, cc, j, crad[i] + crad[j]) > 0.0:
-                    continue
-                _spheres(a, i, sstart, local, gpos, gmat, cen, placed)
-                _spheres(b, j, sstart, local, gpos, gmat, cen, placed)
-                for s in range(sstart[i], sstart[i + 1]):
-                    for t in range(sstart[j], sstart[j + 1]):
-                        if _gap(cen, s, cen, t, radius[s] + radius[t]) <= 0.0:
-                            return -math.inf
+        _centres(w, a, work, done)
+        _centres(w, b, work, done)
+        for i in range(start[a], start[a + 1]):
+            for j in range(start[b], start[b + 1]):
+                dx, dy, dz = cen[i, 0] - cen[j, 0], cen[i, 1] - cen[j, 1], cen[i, 2] - cen[j, 2]
+                if math.sqrt(dx * dx + dy * dy + dz * dz) - radius[i] - radius[j] <= 0.0:
+                    return -math.inf
     for k in range(fpg.shape[0]):
         g, f = fpg[k], fpf[k]
         if (
@@ -333,45 +272,39 @@ def _check(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
             > 0.0
         ):
             continue
-        if _near(g, ftype[f], fpos, fmat, fsize, f, 0.0, w, work) == -math.inf:
-            return -math.inf
-    # The obstacles: the (geom, obstacle) pair of least bound first, then the others,
-    # each skipped when its bound is at least the least clearance found.
+        _centres(w, g, work, done)
+        for i in range(start[g], start[g + 1]):
+            if (
+                _point_distance(cen[i, 0], cen[i, 1], cen[i, 2], ftype[f], fpos, fmat, fsize, f)
+                - radius[i]
+                <= 0.0
+            ):
+                return -math.inf
     best = min(sc[3], sc[1] if grasped else sc[0])
-    m = otype.shape[0]
-    first, low = -1, math.inf
     for g in range(ng):
-        for o in range(m):
-            bound = math.inf
-            if roles[g] == 0 or grasped:
-                bound = (
-                    _point_distance(gpos[g, 0], gpos[g, 1], gpos[g, 2], otype[o], opos, omat,
-                                    osize, o)
-                    - grb[g]
-                )  # fmt: skip
-            bounds[g * m + o] = bound
-            if bound < low:
-                first, low = g * m + o, bound
-    if first < 0 or (low >= best and low > 0.0):
-        return best
-    best = _near(first // m, otype[first % m], opos, omat, osize, first % m, best, w, work)
-    bounds[first] = math.inf
-    for k in range(ng * m):
-        if best == -math.inf:
-            break
-        if bounds[k] >= best and bounds[k] > 0.0:
+        if roles[g] == 1 and not grasped:
             continue
-        best = _near(k // m, otype[k % m], opos, omat, osize, k % m, best, w, work)
+        for o in range(otype.shape[0]):
+            if (
+                _point_distance(gpos[g, 0], gpos[g, 1], gpos[g, 2], otype[o], opos, omat, osize, o)
+                - grb[g]
+                >= best
+            ):
+                continue
+            _centres(w, g, work, done)
+            for i in range(start[g], start[g + 1]):
+                d = (
+                    _point_distance(cen[i, 0], cen[i, 1], cen[i, 2], otype[o], opos, omat, osize, o)
+                    - radius[i]
+                )
+                if d <= 0.0:
+                    return -math.inf  # touching an obstacle reads as a hit, as exactly
+                if d < best:
+                    best = d
     return best
 
 
-@no_refcounts
-def _clearance(w, q, grasped, work):  # type: ignore[no-untyped-def]  # numba
-    """The cover's clearance of ``q`` (n,) [m]: :func:`_check` compiled without reference counts."""
-    return _check(w, q, grasped, work)
-
-
-@no_refcounts
+@njit(cache=True, error_model="numpy")
 def _edge_clear(w, qa, qb, ca, cb, lipschitz, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
     """Whether edge ``qa -> qb`` is certified clear; counts the checks it makes.
 
@@ -387,7 +320,7 @@ def _edge_clear(w, qa, qb, ca, cb, lipschitz, margin, grasped, work, counter):  
         length += (qb[i] - qa[i]) ** 2
     length = math.sqrt(length)
     if math.isnan(cb):
-        cb = _check(w, qb, grasped, work)
+        cb = _clearance(w, qb, grasped, work)
         counter[0] += 1
     if not (ca >= margin and cb >= margin):
         return -math.inf
@@ -407,7 +340,7 @@ def _edge_clear(w, qa, qb, ca, cb, lipschitz, margin, grasped, work, counter):  
             s = s_a + h * j / (k + 1)
             for i in range(n):
                 q[i] = qa[i] + s / length * (qb[i] - qa[i])
-            c = _check(w, q, grasped, work)
+            c = _clearance(w, q, grasped, work)
             counter[0] += 1
             if not c >= margin:
                 return -math.inf

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
-from lynxsim.plan.cover.kernels import Scratch, _clearance, _edge_clear, no_refcounts
+from lynxsim.plan.cover.kernels import Scratch, _clearance, _edge_clear
 from lynxsim.plan.cover.world import FloatArray, WorldTuple
 
 __all__ = [
@@ -99,36 +99,32 @@ def _distance(a, b):  # type: ignore[no-untyped-def]  # numba
     return math.sqrt(s)
 
 
-@no_refcounts
-def _extend(w, nodes, parent, clear, size, target, tc, step, lip, margin, held, work, counter, q):  # type: ignore[no-untyped-def]  # numba
+@njit(cache=True, error_model="numpy")
+def _extend(w, nodes, parent, clear, size, target, tc, step, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
     """Grow a tree one step toward ``target``: (new node index or -1, whether it reached it).
 
-    ``tc`` is the target's clearance when known (a node of the other tree), else NaN;
-    ``q`` (n,) is scratch for the new node; ``held``: whether the payload is held.
+    ``tc`` is the target's clearance when known (a node of the other tree), else NaN.
     """
     best, near = math.inf, 0
-    n = target.shape[0]
     for k in range(size[0]):
-        d = 0.0
-        for i in range(n):
-            d += (nodes[k, i] - target[i]) ** 2
-        d = math.sqrt(d)
+        d = _distance(nodes[k], target)
         if d < best:
             best, near = d, k
+    n = target.shape[0]
+    q = np.empty(n)
     reached = best <= step
     for i in range(n):
         q[i] = target[i] if reached else nodes[near, i] + (target[i] - nodes[near, i]) * step / best
     if size[0] >= nodes.shape[0]:
         return -1, False
     c = _edge_clear(
-        w, nodes[near], q, clear[near], tc if reached else math.nan, lip, margin, held,
+        w, nodes[near], q, clear[near], tc if reached else math.nan, lip, margin, grasped,
         work, counter,
     )  # fmt: skip
     if not c >= margin:
         return -1, False
     k = size[0]
-    for i in range(n):
-        nodes[k, i] = q[i]
+    nodes[k] = q
     parent[k] = near
     clear[k] = c
     size[0] += 1
@@ -173,7 +169,7 @@ def _dedupe(path):  # type: ignore[no-untyped-def]  # numba
     return kept[:count].copy()
 
 
-@no_refcounts
+@njit(cache=True, error_model="numpy")
 def _checked(w, q, c, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
     """``c``, the clearance of ``q`` when known, else checked (NaN: not known)."""
     if math.isnan(c):
@@ -182,7 +178,7 @@ def _checked(w, q, c, grasped, work, counter):  # type: ignore[no-untyped-def]  
     return c
 
 
-@no_refcounts
+@njit(cache=True, error_model="numpy")
 def _edge(w, a, b, ca, cb, lip, margin, grasped, work, counter):  # type: ignore[no-untyped-def]  # numba
     """Whether edge ``a -> b`` is certified clear (``ca``, ``cb`` known clearances)."""
     return _edge_clear(w, a, b, ca, cb, lip, margin, grasped, work, counter) >= margin
@@ -317,7 +313,7 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
         if cg[k] >= margin:
             nodes_b[size_b[0]], clear_b[size_b[0]] = goals[k], cg[k]
             size_b[0] += 1
-    target, qbuf = np.empty(n), np.empty(n)
+    target = np.empty(n)
     for it in range(samples):
         for i in range(n):
             target[i] = lower[i] + _next(state) * (upper[i] - lower[i])
@@ -337,7 +333,6 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                 grasped,
                 work,
                 counter,
-                qbuf,
             )
         else:
             grown, reached = _extend(
@@ -354,7 +349,6 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                 grasped,
                 work,
                 counter,
-                qbuf,
             )
         if grown < 0:
             continue
@@ -376,7 +370,6 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                     grasped,
                     work,
                     counter,
-                    qbuf,
                 )
             else:
                 other, reached = _extend(
@@ -393,7 +386,6 @@ def _search(w, start, goals, lower, upper, lip, margin, grasped, seed, samples, 
                     grasped,
                     work,
                     counter,
-                    qbuf,
                 )
             if other < 0:
                 break

@@ -13,9 +13,7 @@ self pair overlap, a sphere meets a fixed geom of the robot or a tabulated
 pair may touch; else the smallest ``|c - o| - r`` over every sphere
 ``(c, r)`` and obstacle ``o``, at most the cap and the exact clearances of what never
 moves. Every sphere encloses a part of its geom, so the cover's clearance is
-never above the exact one. The spheres of a geom are grouped in clusters, each
-inside a bounding sphere, and a geom's clusters inside its bounding sphere: the
-checks skip what the coarser levels show to be out of reach.
+never above the exact one.
 """
 
 from __future__ import annotations
@@ -60,7 +58,7 @@ WorldTuple = tuple[
     FloatArray, FloatArray, IntArray, IntArray, FloatArray, FloatArray, IntArray, FloatArray,
     FloatArray, FloatArray, FloatArray, FloatArray, IntArray, IntArray, IntArray, FloatArray,
     FloatArray, FloatArray, IntArray, IntArray, FloatArray, IntArray, FloatArray, FloatArray,
-    IntArray, IntArray, IntArray, IntArray, FloatArray, FloatArray,
+    IntArray, IntArray,
 ]  # fmt: skip
 """The fields of a :class:`CoverWorld` in order: the one argument of every compiled check."""
 
@@ -115,12 +113,6 @@ class CoverWorld:
         tab_start: Its intervals are ``tab_flag[tab_start[t]:tab_start[t + 1]]``, (T + 1,).
         tab_flag: 1 where the pair may touch in an interval, 0 where it cannot (certified
             by MuJoCo's distances at the interval's ends and a Lipschitz bound).
-        geom_clu_start: Each geom's clusters of spheres are
-            ``geom_clu_start[g]:geom_clu_start[g + 1]``, (G + 1,).
-        clu_sph_start: Each cluster's spheres are ``clu_sph_start[c]:clu_sph_start[c + 1]``,
-            (C + 1,).
-        clu_centre: Centre of each cluster's bounding sphere in its geom's frame, (C, 3) [m].
-        clu_radius: Its radius, (C,) [m]: every sphere of the cluster lies inside it.
         scalars: ``(exact clearance of the fixed geoms without the payload held,
             the same with it held, 1.0 if fixed geoms touch else 0.0, cap)``, (4,) [m].
 
@@ -170,10 +162,6 @@ class CoverWorld:
     tab_step: FloatArray
     tab_start: IntArray
     tab_flag: IntArray
-    geom_clu_start: IntArray
-    clu_sph_start: IntArray
-    clu_centre: FloatArray
-    clu_radius: FloatArray
 
     def __post_init__(self) -> None:
         for f in fields(self):
@@ -216,9 +204,6 @@ class CoverWorld:
             "tab_lo": (len(self.tab_joint),),
             "tab_step": (len(self.tab_joint),),
             "tab_start": (len(self.tab_joint) + 1,),
-            "geom_clu_start": (g + 1,),
-            "clu_sph_start": (len(self.clu_radius) + 1,),
-            "clu_centre": (len(self.clu_radius), 3),
         }
         for name, shape in shapes.items():
             if getattr(self, name).shape != shape:
@@ -245,11 +230,6 @@ class CoverWorld:
             and (np.diff(self.tab_start) >= 1).all()
             and (self.tab_step > 0.0).all()
             and ((self.fpair_fixed >= 0) & (self.fpair_fixed < len(self.fix_type))).all()
-            and self.geom_clu_start[0] == 0
-            and self.geom_clu_start[-1] == len(self.clu_radius)
-            and (np.diff(self.geom_clu_start) >= 1).all()
-            and (self.clu_sph_start[self.geom_clu_start] == self.geom_sph_start).all()
-            and (np.diff(self.clu_sph_start) >= 1).all()
         )
         if not ok:
             raise InvalidInputError("cover world: an index is out of range or out of order")

@@ -8,8 +8,7 @@ model and groups (any robot: nothing here names one) into the arrays of a
   compiled forward kinematics pose the covered geoms as ``mj_kinematics`` does;
 * every colliding geom of the robot that moves with the planned joints, and
   the payload's geoms at the attach site, covered by spheres
-  (:func:`~lynxsim.sim.cover.spheres.cover_geom`), grouped in clusters
-  (:func:`~lynxsim.sim.cover.clusters.cluster_spheres`);
+  (:func:`~lynxsim.sim.cover.spheres.cover_geom`);
 * the obstacles as primitives, the supports (table, floor) as half-spaces that
   contain them;
 * the self pairs MuJoCo's collision filter lets through (contype/conaffinity,
@@ -42,7 +41,6 @@ from lynxsim.plan.cover.world import (
     CoverWorld,
 )
 from lynxsim.sim.collision import CollisionChecker
-from lynxsim.sim.cover.clusters import cluster_spheres
 from lynxsim.sim.cover.spheres import DEFAULT_SLACK_M, cover_geom
 
 __all__ = ["CoverReport", "cover_world"]
@@ -170,11 +168,6 @@ def cover_world(
     roles = [0] * len(moving) + [1] * len(held)
     parts = [cover_geom(_primitive(m, x, "robot"), m.geom_size[x], slack_m) for x in covered]
     starts = np.concatenate([[0], np.cumsum([len(p.radii) for p in parts])]).astype(np.int64)
-    groups = [cluster_spheres(p.centres, p.radii) for p in parts]
-    clu_start = np.concatenate([[0], np.cumsum([len(c.radii) for c in groups])]).astype(np.int64)
-    clu_sph = np.concatenate([[0]] + [s + c.start[1:] for s, c in zip(starts[:-1], groups)]).astype(
-        np.int64
-    )
     geom_body, geom_pos, geom_mat, rbound = [], [], [], []
     for x, part in zip(covered, parts):
         geom_body.append(int(m.geom_bodyid[x]) if x in moving else m.nbody)
@@ -260,10 +253,8 @@ def cover_world(
         geom_rbound=np.array(rbound),
         geom_sph_start=starts,
         geom_payload=np.array(roles, dtype=np.int64),
-        sph_local=np.concatenate([p.centres[c.order] for p, c in zip(parts, groups)]).reshape(
-            -1, 3
-        ),
-        sph_radius=np.concatenate([p.radii[c.order] for p, c in zip(parts, groups)]),
+        sph_local=np.concatenate([p.centres for p in parts]).reshape(-1, 3),
+        sph_radius=np.concatenate([p.radii for p in parts]),
         obs_type=o_type,
         obs_pos=o_pos,
         obs_mat=o_mat,
@@ -284,10 +275,6 @@ def cover_world(
         tab_step=np.array([t[2] for t in tables]),
         tab_start=np.concatenate([[0], np.cumsum([len(t[3]) for t in tables])]).astype(np.int64),
         tab_flag=np.concatenate([np.zeros(0, dtype=np.int64)] + [t[3] for t in tables]),
-        geom_clu_start=clu_start,
-        clu_sph_start=clu_sph,
-        clu_centre=np.concatenate([c.centres for c in groups]).reshape(-1, 3),
-        clu_radius=np.concatenate([c.radii for c in groups]),
     )
     report = CoverReport(
         geoms=len(covered),
