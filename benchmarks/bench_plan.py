@@ -78,13 +78,6 @@ class CountingOracle:
         self.asked += len(q)
         return self.inner.clearance(q, grasped=grasped)
 
-    def clearance_below(self, q: np.ndarray, *, grasped: bool, level: np.ndarray) -> np.ndarray:
-        """The inner oracle's clearances up to levels (where it has them), counted."""
-        self.asked += len(q)
-        if hasattr(self.inner, "clearance_below"):
-            return self.inner.clearance_below(q, grasped=grasped, level=level)
-        return np.minimum(self.inner.clearance(q, grasped=grasped), level)
-
 
 @dataclass
 class Outcome:

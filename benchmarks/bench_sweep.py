@@ -6,12 +6,8 @@ placements) for one task and two trajectory types, judged on recorded runs
 same rows played one by one (a physics run each, as ``lynxsim play --no-video``
 does), on a sample of them. First, ``planned`` rows (each row planned with the
 compiled planner around its placement, then played) on a coarser grid, in rows
-per second of wall and of CPU time (all threads), with each row's CPU time split
-into the scene's compile, the plan call (of which the exact checks, nearly all
-the re-check of the timed motion, and the build of the scene's sphere cover),
-the physics run and the rest, beside the bare physics of one row
-(``mj_step`` alone, as many steps as its run): the floor no sweep row goes
-below. Every backend starts from an empty folder (no shard reused)::
+per second of wall and of CPU time. Every backend starts from an empty folder (no
+shard reused)::
 
     python benchmarks/bench_sweep.py [--step-mm 20] [--played 12]
 """
@@ -19,25 +15,17 @@ below. Every backend starts from an empty folder (no shard reused)::
 from __future__ import annotations
 
 import argparse
-import collections
-import contextlib
 import dataclasses
-import inspect
-import math
 import os
 import tempfile
 import time
-from collections.abc import Callable, Iterator
 
-import mujoco
 import numpy as np
 
-from lynxsim.robots import get, motion, plan, simulation
+from lynxsim.robots import motion
 from lynxsim.robots.arm import ROBOT as ARM
 from lynxsim.scene import Scene
-from lynxsim.sim import joint_sim, planning
 from lynxsim.sim.arm.task import run_arm_trajectory
-from lynxsim.sim.stepping.rollout import rollout
 from lynxsim.sweep.runner import LocalBackend, run_sweep
 from lynxsim.sweep.spec import ObstacleSweep, SweepSpec, _digest, table_extent_mm
 from lynxsim.tasks import load_task
@@ -107,60 +95,10 @@ def _timed(spec: SweepSpec, backend: object) -> tuple[float, dict]:
     return rows / elapsed, outcome.table
 
 
-@contextlib.contextmanager
-def _timed_parts(parts: dict[str, float]) -> Iterator[None]:
-    """CPU time [s] (this process, all threads) spent in the stages of planned rows."""
-    stages: list[tuple[object, str, str]] = [
-        (joint_sim, "load_joint_scene", "scene compile"),
-        (joint_sim, "run_joints", "physics run"),
-        (planning, "plan_request", "plan call"),
-        (planning.CheckerOracle, "clearance", "of which exact checks"),
-        (planning, "cover_oracle", "of which cover build"),
-    ]
-    saved = [(owner, name, getattr(owner, name)) for owner, name, _ in stages]
-
-    def timed(f: Callable[..., object], key: str) -> Callable[..., object]:
-        def run(*args: object, **kwargs: object) -> object:
-            start = time.process_time()
-            try:
-                return f(*args, **kwargs)
-            finally:
-                parts[key] += time.process_time() - start
-
-        return run
-
-    for (owner, name, key), (_, _, f) in zip(stages, saved):
-        setattr(owner, name, timed(f, key))
-    try:
-        yield
-    finally:
-        for owner, name, f in saved:
-            setattr(owner, name, f)
-
-
-def _bare_physics(spec: SweepSpec) -> tuple[float, int]:
-    """CPU time [s] of ``mj_step`` alone for one planned row's steps (hold, motion, settle)."""
-    task = spec.tasks[0]
-    adapter = simulation(get(task.robot))
-    trajectory = plan(get(task.robot), task, seed=0).trajectory
-    model = adapter.model(task.scene)
-    presettle_s = inspect.signature(rollout).parameters["presettle_s"].default
-    steps = len(adapter.play(task, trajectory).log.time_s) + round(presettle_s / model.opt.timestep)
-    best = math.inf
-    for _ in range(3):  # the best of three: the machine may be shared
-        data = mujoco.MjData(model)
-        start = time.process_time()
-        for _ in range(steps):
-            mujoco.mj_step(model, data)
-        best = min(best, time.process_time() - start)
-    return best, steps
-
-
 def _planned(step_mm: float) -> None:
     """``planned`` rows (each planned, compiled planner, and played) per second, wall and CPU."""
     spec = _spec(step_mm, (TrajectoryKind.PLANNED,))
-    parts: dict[str, float] = collections.defaultdict(float)
-    with tempfile.TemporaryDirectory() as out, _timed_parts(parts):
+    with tempfile.TemporaryDirectory() as out:
         start, cpu = time.perf_counter(), time.process_time()
         outcome = run_sweep(spec, out, backend=LocalBackend(1))
         wall, cpu = time.perf_counter() - start, time.process_time() - cpu
@@ -169,20 +107,6 @@ def _planned(step_mm: float) -> None:
         f"{'planned rows, local --jobs 1':40s} {rows / wall:10.1f} rows/s wall, {rows / cpu:.1f} "
         f"rows/s of CPU ({rows} rows on a {step_mm:g} mm grid; load average "
         f"{os.getloadavg()[0]:.2f})"
-    )
-    other = cpu - parts["scene compile"] - parts["plan call"] - parts["physics run"]
-    ms = {k: f"{1e3 * v / rows:.0f}" for k, v in parts.items()}
-    print(
-        f"  CPU per row [ms]: {1e3 * cpu / rows:.0f} = scene compile {ms['scene compile']} + plan "
-        f"call {ms['plan call']} (of which exact checks {ms['of which exact checks']}, cover "
-        f"build {ms['of which cover build']}) + physics run {ms['physics run']} + other "
-        f"{1e3 * other / rows:.0f}"
-    )
-    bare, steps = _bare_physics(spec)
-    print(
-        f"  bare physics of one row: {1e3 * bare:.0f} ms CPU ({steps} mj_step): at most "
-        f"{os.cpu_count() or 1}/{bare:.3f} s = {(os.cpu_count() or 1) / bare:.0f} rows/s on "
-        f"{os.cpu_count()} cores with nothing but physics"
     )
 
 

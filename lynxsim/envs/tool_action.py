@@ -21,16 +21,14 @@ The nearest target is searched among candidates, all at once:
 - the current point at the requested pitch, and the current target itself;
 - the result of a damped Gauss-Newton search in joint space from the current
   command, within the joint ranges and the jump limit (where the joint
-  ranges, not the reach, bound the request; compiled,
-  :func:`lynxsim.envs.tool_descent.descend`).
+  ranges, not the reach, bound the request).
 
 A candidate the controller rejects is replaced by the farthest feasible point
-on the segment to it from the current target (a grid of fractions, then a
-finer one past the last feasible; the current target is feasible), unless no
-point of that segment is nearer the request than the best feasible candidate.
-The candidate nearest the request wins: the target slides along the reach
-boundary and the joint and pitch limits instead of stopping. Tested against
-brute force (``tests/envs/test_tool_action.py``): no feasible target
+on the segment to it from the current target (bisection; the current target
+is feasible), unless no point of that segment is nearer the request than the
+best feasible candidate. The candidate nearest the request wins: the target slides along
+the reach boundary and the joint and pitch limits instead of stopping. Tested
+against brute force (``tests/envs/test_tool_action.py``): no feasible target
 among 20,000 sampled around a request is nearer than the result by more than
 an eighth of a step. Near the edge the nearest target may tilt the pitch (a
 pitch step moves the reach by up to 10 mm); a policy that keeps pushing
@@ -45,16 +43,14 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
-from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-from lynxsim.arm import LYNX_ARM, tool_pose
+from lynxsim.arm import LYNX_ARM, jacobian, tool_pose
 from lynxsim.arm.ik import ik_unchecked
 from lynxsim.envs.control import TargetFallback, TargetStatus, ToolSpaceController
-from lynxsim.envs.tool_descent import DescentLimits, descend
 from lynxsim.errors import InvalidInputError
 
 __all__ = [
@@ -71,11 +67,20 @@ StatusArray = npt.NDArray[np.int8]
 
 PITCH_OFFSETS = np.linspace(-2.0, 2.0, 17)
 """Pitches tried around the requested one, in pitch steps (a quarter step apart)."""
-_GRID = 16
-"""Fractions of a segment solved at once, twice, in the search for its farthest
-feasible point (to 1/256 of the segment)."""
+_BISECTIONS = 8
+"""Halvings of the search along a segment for its farthest feasible point (1/256)."""
 _REACH_MARGIN_M = 1e-9
 """A point projected onto the reach boundary lies this far inside it [m]."""
+_DESCENT_STEPS = 20
+"""Damped Gauss-Newton steps of the search in joint space."""
+_DAMPING = 1e-3
+"""Initial Levenberg-Marquardt damping [(action units / rad)^2]."""
+_CONVERGED = 1e-10
+"""A search step that brings the squared miss down by less [action units^2] ends it."""
+_MAX_DAMPING = 1e6
+"""A search whose damping grew past this (steps kept failing) ends [-]."""
+_INSIDE = 1e-9
+"""Relative margin inside the joint ranges and the jump limit of the joint-space search."""
 
 
 def _positive(value: object, name: str) -> float:
@@ -131,11 +136,6 @@ class ToolLimits:
         """Move per action unit of the five components, shape (5,) [m, m, m, rad, rad]."""
         s = self.position_step
         return np.array([s, s, s, self.pitch_step, self.roll_step])
-
-    @cached_property
-    def descent(self) -> DescentLimits:
-        """The limits as the compiled joint-space search takes them (made once)."""
-        return DescentLimits(self.steps, self.pitch_range, self.max_joint_jump)
 
     @property
     def lower(self) -> FloatArray:
@@ -221,32 +221,22 @@ def _farthest(
 ) -> tuple[FloatArray, FloatArray]:
     """The farthest feasible points on segments from feasible ``start`` to ``end`` (n, 5).
 
-    The end of the feasible stretch that begins at ``start``, to 1 /
-    ``_GRID ** 2`` of the segment: the segment's fractions ``k / _GRID`` are
-    solved at once, then those ``i / _GRID ** 2`` past the last feasible one
-    before the first infeasible one (two IK calls, whatever the resolution).
-
     Returns:
         The points (``start`` where no fraction of the segment is feasible) and
         their joints, shapes (n, 5).
     """
     n = start.shape[0]
+    low, high = np.zeros(n), np.ones(n)
     best, best_q = start.copy(), q_ref.copy()
-    low = np.zeros(n)
-    step = 1.0
-    for _ in range(2):
-        step /= _GRID
-        fractions = low[:, None] + step * np.arange(1, _GRID + 1)  # (n, G)
-        point = start[:, None, :] + fractions[..., None] * (end - start)[:, None, :]
-        q, status = _solve(point.reshape(-1, 5), np.repeat(q_ref, _GRID, axis=0), max_jump)
-        ok = (status == TargetStatus.ACCEPTED).reshape(n, _GRID) & (fractions <= 1.0)
-        # feasible fractions before the first infeasible one
-        taken = np.cumprod(ok, axis=1).sum(axis=1)
-        rows = np.flatnonzero(taken)
-        pick = rows * _GRID + taken[rows] - 1
-        best[rows] = point.reshape(-1, 5)[pick]
-        best_q[rows] = q[pick]
-        low = low + step * taken
+    for _ in range(_BISECTIONS):
+        mid = 0.5 * (low + high)
+        point = start + mid[:, None] * (end - start)
+        q, status = _solve(point, q_ref, max_jump)
+        ok = status == TargetStatus.ACCEPTED
+        low = np.where(ok, mid, low)
+        high = np.where(ok, high, mid)
+        best[ok] = point[ok]
+        best_q[ok] = q[ok]
     return best, best_q
 
 
@@ -254,6 +244,66 @@ def _pose(q: FloatArray) -> FloatArray:
     """Tool point and pitch of joints (n, 5), shape (n, 4)."""
     p = tool_pose(q)
     return np.concatenate([p.position, p.pitch[:, None]], axis=1)
+
+
+def _descend(
+    q_cmd: FloatArray, request: FloatArray, limits: ToolLimits
+) -> tuple[FloatArray, FloatArray]:
+    """The joints nearest the requests in action units, by a search in joint space.
+
+    Damped Gauss-Newton on ``|(pose(q) - request) / step|^2`` over q1..q4 within
+    the joint ranges and ``max_joint_jump`` of the command (a box: the reach
+    boundary is the elbow's straight limit, the pitch limits are the wrist's),
+    starting at the command; variables at a bound that the step pushes out are
+    held there, and a step's pitch is brought into the pitch range by the wrist.
+    Each step is kept only if it brings the pose nearer.
+
+    Returns:
+        The tool targets (m, 5) and their joints (m, 5); the roll is the request's.
+    """
+    m = request.shape[0]
+    w = 1.0 / limits.steps[:4]
+    jump = limits.max_joint_jump * (1.0 - _INSIDE)
+    lo = np.maximum(np.asarray(LYNX_ARM.q_min[:4]), q_cmd[:, :4] - jump)
+    hi = np.minimum(np.asarray(LYNX_ARM.q_max[:4]), q_cmd[:, :4] + jump)
+    pitch_lo, pitch_hi = limits.pitch_range
+    q = q_cmd.copy()
+    q[:, 4] = request[:, 4]
+    error = (request[:, :4] - _pose(q)) * w
+    cost = np.einsum("ij,ij->i", error, error)
+    damping = np.full(m, _DAMPING)
+    done = np.zeros(m, dtype=bool)
+    eye = np.eye(4)
+    for _ in range(_DESCENT_STEPS):
+        if done.all():
+            break
+        jac = jacobian(q)[:, :, :4] * w[:, None]
+        free = np.ones((m, 4), dtype=bool)
+        for _ in range(2):  # solve, hold the bounded variables that would leave, solve again
+            jf = jac * free[:, None, :]
+            normal = np.einsum("nki,nkj->nij", jf, jf) + damping[:, None, None] * eye
+            dq = np.linalg.solve(normal, np.einsum("nki,nk->ni", jf, error)[..., None])[..., 0]
+            dq *= free
+            free &= ~(((q[:, :4] <= lo) & (dq < 0.0)) | ((q[:, :4] >= hi) & (dq > 0.0)))
+        trial = q.copy()
+        trial[:, :4] = np.clip(q[:, :4] + dq, lo, hi)
+        # Into the pitch range by the wrist (pitch = q2 + q3 + q4), else rejected.
+        bent = trial[:, 1] + trial[:, 2]
+        wrist = np.clip(bent + trial[:, 3], pitch_lo, pitch_hi) - bent
+        trial[:, 3] = np.clip(wrist, lo[:, 3], hi[:, 3])
+        pitch = bent + trial[:, 3]
+        trial_error = (request[:, :4] - _pose(trial)) * w
+        trial_cost = np.einsum("ij,ij->i", trial_error, trial_error)
+        trial_cost[(pitch < pitch_lo) | (pitch > pitch_hi)] = np.inf
+        better = (trial_cost < cost) & ~done
+        # A row is done (and left alone: rows never depend on each other) when a step
+        # gains next to nothing or the damping has grown past any useful step.
+        done |= (better & (cost - trial_cost < _CONVERGED)) | (damping > _MAX_DAMPING)
+        q[better] = trial[better]
+        error[better] = trial_error[better]
+        cost = np.where(better, trial_cost, cost)
+        damping = np.where(better, 0.3 * damping, 10.0 * damping)
+    return np.concatenate([_pose(q), q[:, 4:]], axis=1), q
 
 
 def _nearest(
@@ -279,8 +329,8 @@ def _nearest(
     cand[:, 2 * p, :3] = current[:, :3]
     cand[:, 2 * p, 3] = request[:, 3]
     cand[:, :, 4] = request[:, None, 4]
-    descended = _pose(descend(q_cmd, request, limits.descent))
-    cand[:, 2 * p + 1, :4] = np.clip(descended, limits.lower[:4], limits.upper[:4])
+    descended, _ = _descend(q_cmd, request, limits)
+    cand[:, 2 * p + 1, :4] = np.clip(descended[:, :4], limits.lower[:4], limits.upper[:4])
     cand[:, 2 * p + 2, :4] = current[:, :4]  # feasible: the fallback
     k = cand.shape[1]
     flat = cand.reshape(-1, 5)

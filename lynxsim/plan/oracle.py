@@ -8,14 +8,14 @@ to it; tests use pure-numpy fake worlds.
 
 from __future__ import annotations
 
-from typing import Protocol, runtime_checkable
+from typing import Protocol
 
 import numpy as np
 import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 
-__all__ = ["ClearanceOracle", "FloatArray", "LevelOracle", "query", "query_below"]
+__all__ = ["ClearanceOracle", "FloatArray", "query"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -54,43 +54,6 @@ def query(oracle: ClearanceOracle, q: FloatArray, grasped: bool) -> FloatArray:
     if q.shape[0] == 0:
         return np.empty(0)
     c = np.asarray(oracle.clearance(q, grasped=grasped), dtype=float)
-    if c.shape != (q.shape[0],):
-        raise InvalidInputError(
-            f"the clearance oracle answered shape {c.shape} for {q.shape[0]} joint vectors; "
-            f"expected ({q.shape[0]},)"
-        )
-    return np.where(np.isnan(c), -np.inf, c)
-
-
-@runtime_checkable
-class LevelOracle(Protocol):
-    """A :class:`ClearanceOracle` that answers for less work where a clearance is above a level."""
-
-    n_joints: int
-
-    def clearance(self, q: FloatArray, *, grasped: bool) -> FloatArray:
-        """As :meth:`ClearanceOracle.clearance`."""
-        ...
-
-    def clearance_below(self, q: FloatArray, *, grasped: bool, level: FloatArray) -> FloatArray:
-        """``min(clearance, level)`` of each joint vector, (N, n) and (N,) -> (N,) [m].
-
-        A clearance at or below its level is the same number :meth:`clearance`
-        gives; one above it reads as the level.
-        """
-        ...
-
-
-def query_below(
-    oracle: ClearanceOracle, q: FloatArray, grasped: bool, level: FloatArray
-) -> FloatArray:
-    """``min(clearance, level)`` of ``q`` (N, n), (N,) [m]; see :class:`LevelOracle`.
-
-    NaN reads as ``-inf``; an oracle without levels is asked for its clearances.
-    """
-    if not isinstance(oracle, LevelOracle) or q.shape[0] == 0:
-        return np.minimum(query(oracle, q, grasped), level)
-    c = np.asarray(oracle.clearance_below(q, grasped=grasped, level=level), dtype=float)
     if c.shape != (q.shape[0],):
         raise InvalidInputError(
             f"the clearance oracle answered shape {c.shape} for {q.shape[0]} joint vectors; "

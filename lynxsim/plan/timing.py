@@ -30,10 +30,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError
 from lynxsim.plan.errors import PlanningError, TimingClearanceError
-from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query, query_below
+from lynxsim.plan.oracle import ClearanceOracle, FloatArray, query
 from lynxsim.traj.kinds import TrajectoryKind
 from lynxsim.traj.limits import JointBounds, JointLimits
 from lynxsim.traj.ruckig_profile import ruckig_trajectory
@@ -47,12 +48,6 @@ DEFAULT_MAX_REPAIRS = 6
 
 SPEED_SLACK = 1e-6
 """Relative slack on the speed bound ``||v||_2`` (the limit check admits 1e-9) [-]."""
-
-_ASK_BATCH = 64
-"""Most samples asked of the exact world in one round of the branch and bound [-]."""
-
-_PAIR_SLACK_M = 1e-7
-"""How far above the best an interval's bound is asked to rise, beyond rounding [m]."""
 
 
 @dataclass(frozen=True)
@@ -120,54 +115,40 @@ def _screened(
     margin_m: float,
     step_m: float,
 ) -> FloatArray:
-    """Clearances of ``q`` (N, n), exact wherever the verdict, minimum or bound need them [m].
+    """The exact clearances of ``q`` (N, n) wherever the verdict, minimum or bound need them.
 
-    ``screen`` never exceeds ``oracle``: every sample starts at its screened
-    lower bound, and ``oracle`` is asked (branch and bound) only where the
-    bound could be at or below half the margin or the best exact clearance
-    found, there up to a level just above that (:func:`query_below`: a
-    clearance above the level reads as the level, still a lower bound), and
-    for both samples of every interval whose bound ``(c_i + c_{i+1} - step) / 2``
-    could be at or below the best exact one. Every sample left with a bound
-    has it above the minimum (and half the margin), every such interval above
-    the best exact bound, so the verdict, minimum and bound are those of
+    ``screen`` never exceeds ``oracle``: a sample whose screened clearance is at
+    least half the margin passes exactly too, and the smallest clearance and the
+    bound ``(c_i + c_{i+1} - step) / 2`` are found by asking ``oracle`` only for
+    the samples (and neighbours) whose screened values could be at or below the
+    best exact ones (branch and bound). Every sample not asked keeps its lower
+    bound, above the minimum, so the verdict, minimum and bound are those of
     ``oracle`` on every sample.
     """
-    c = query(screen, q, grasped)
+    low = query(screen, q, grasped)
+    c = low.copy()
     known = np.zeros(len(q), dtype=bool)
-    tried = np.zeros(len(q), dtype=bool)  # asked up to a level once: next time, exactly
 
-    def ask(level: FloatArray) -> bool:
-        """Ask every unknown sample with a level above ``-inf`` up to it; False if none."""
-        index = np.flatnonzero(~known & (level > -np.inf))
-        if not index.size:
-            return False
-        if index.size > _ASK_BATCH:  # the lowest bounds first: they hold the minima
-            index = np.sort(index[np.argpartition(c[index], _ASK_BATCH)[:_ASK_BATCH]])
-        levels = np.where(tried[index], np.inf, level[index])
-        c[index] = query_below(oracle, q[index], grasped, levels)
-        known[index] = c[index] < levels  # at the level: a bound of it, no value
-        tried[index] = True
-        return True
+    def ask(index: npt.NDArray[np.intp]) -> None:
+        index = index[~known[index]]
+        if index.size:
+            c[index] = query(oracle, q[index], grasped)
+            known[index] = True
 
-    first = int(np.argmin(0.5 * (c[:-1] + c[1:] - step_m)))
-    level = np.where(c < 0.5 * margin_m, np.inf, -np.inf)
-    level[[int(np.argmin(c)), first, first + 1]] = np.inf
-    ask(level)
+    first = int(np.argmin(0.5 * (low[:-1] + low[1:] - step_m)))
+    ask(np.concatenate([np.flatnonzero(low < 0.5 * margin_m), [int(np.argmin(low))],
+                        [first, first + 1]]).astype(np.intp))  # fmt: skip
     while True:
         best = c[known].min() if known.any() else np.inf
         pair = 0.5 * (c[:-1] + c[1:] - step_m)
         both = known[:-1] & known[1:]
         best_pair = pair[both].min() if both.any() else np.inf
-        level = np.where(~known & (c <= max(best, 0.5 * margin_m)), 0.0, -np.inf)
-        level[level == 0.0] = np.nextafter(max(best, 0.5 * margin_m), np.inf)
-        # an interval's end, up to where the interval's bound would clear the best one
+        need = np.flatnonzero(~known & (c <= best))
         pairs = np.flatnonzero(~both & (pair <= best_pair))
-        need = 2.0 * best_pair + step_m + _PAIR_SLACK_M
-        np.maximum.at(level, pairs, need - c[pairs + 1])
-        np.maximum.at(level, pairs + 1, need - c[pairs])
-        if not ask(level):
+        wanted = np.unique(np.concatenate([need, pairs, pairs + 1]))
+        if not (~known[wanted]).any():
             return c
+        ask(wanted)
 
 
 def _check_chunk(

@@ -12,15 +12,11 @@ actuator (:class:`JointRobotNames`); the table scene's parts carry the names of
   floor; obstacles: every other colliding world geom, in the scene's order) and
   its playback binding (:class:`~lynxsim.sim.binding.RobotBinding`);
 * :func:`load_joint_scene`: the robot's scene with a :class:`~lynxsim.scene.Scene`
-  built in, compiled with the recording sensors of its playback (the last few
-  compiled models kept, each call given a copy: a sweep row's planner and its
-  physics run share one compile).
+  built in, compiled with the recording sensors of its playback.
 """
 
 from __future__ import annotations
 
-import copy
-import functools
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -32,16 +28,7 @@ from lynxsim.errors import InvalidInputError
 from lynxsim.scene import Scene
 from lynxsim.sim.binding import RobotBinding, name_to_id
 from lynxsim.sim.collision import CollisionGroups
-from lynxsim.sim.scene_build import (
-    CUBE_BODY,
-    CUBE_GEOM,
-    FLOOR_GEOM,
-    TABLE_GEOM,
-    SceneFile,
-    build_scene,
-    parse_scene,
-    scene_file,
-)
+from lynxsim.sim.scene_build import CUBE_BODY, CUBE_GEOM, FLOOR_GEOM, TABLE_GEOM, build_scene
 from lynxsim.sim.stepping.sensors import add_recording_sensors
 
 __all__ = [
@@ -235,16 +222,6 @@ class JointRobotIds:
         )
 
 
-@functools.lru_cache(maxsize=4)
-def _compiled(
-    scene_xml: SceneFile, names: JointRobotNames, scene: Scene, exact: str, owner: str
-) -> mujoco.MjModel:
-    """The compiled scene; ``exact`` is ``repr(scene)`` (equal scenes may differ in -0.0)."""
-    spec = build_scene(parse_scene(scene_xml[0]), scene, owner=owner)
-    plain = spec.compile()
-    return add_recording_sensors(spec, plain, JointRobotIds.from_model(plain, names).binding(plain))
-
-
 def load_joint_scene(
     scene_xml: str | os.PathLike[str], names: JointRobotNames, scene: Scene, *, owner: str
 ) -> mujoco.MjModel:
@@ -258,8 +235,7 @@ def load_joint_scene(
 
     Returns:
         The compiled model, with the sensors that let a playback record natively
-        (:func:`lynxsim.sim.stepping.sensors.add_recording_sensors`); a copy of its
-        own (the same arguments, the file unchanged, compile once per few calls).
+        (:func:`lynxsim.sim.stepping.sensors.add_recording_sensors`).
 
     Raises:
         InvalidInputError: See :func:`~lynxsim.sim.scene_build.build_scene`; a
@@ -267,4 +243,6 @@ def load_joint_scene(
     """
     if not isinstance(scene, Scene):
         raise InvalidInputError(f"scene must be a lynxsim.scene.Scene, got {scene!r}")
-    return copy.copy(_compiled(scene_file(scene_xml), names, scene, repr(scene), owner))
+    spec = build_scene(mujoco.MjSpec.from_file(str(scene_xml)), scene, owner=owner)
+    plain = spec.compile()
+    return add_recording_sensors(spec, plain, JointRobotIds.from_model(plain, names).binding(plain))

@@ -71,10 +71,6 @@ class CheckerOracle:
         """Smallest clearance of each joint vector, (N, n) -> (N,) [m], at most the cap."""
         return self._checker.min_clearance(q, grasped=grasped, cap=self._cap)
 
-    def clearance_below(self, q: FloatArray, *, grasped: bool, level: FloatArray) -> FloatArray:
-        """``min(clearance, level)`` of each joint vector [m], for less work above the level."""
-        return self._checker.min_clearance(q, grasped=grasped, cap=self._cap, below=level)
-
 
 def cover_oracle(checker: CollisionChecker, cap_m: float = PLANNING_CAP_M) -> CoverOracle | None:
     """The sphere cover of the checker's robot in its world, or None if the model has none.

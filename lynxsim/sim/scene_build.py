@@ -13,18 +13,12 @@ cameras) with these documented names, and :func:`build_scene` edits its parsed
 * optionally a plane :data:`FLOOR_GEOM` (``"floor"``): support, as the table.
 
 The collision groups of such a scene (:func:`lynxsim.sim.joint_robot.scene_groups`)
-read the same names. :func:`parse_scene` parses such a scene for building: its
-builtin textures (a gradient sky box, a checker floor) are given as the pixels
-MuJoCo generates for them, generated once per process and file, so that a
-compile (one per scene of a sweep row) does not generate them again; the model
-is the same, byte for byte.
+read the same names.
 """
 
 from __future__ import annotations
 
-import functools
 import math
-import os
 from typing import NamedTuple
 
 import mujoco
@@ -39,11 +33,8 @@ __all__ = [
     "OBSTACLE_CLASS",
     "TABLE_GEOM",
     "ObstacleGeom",
-    "SceneFile",
     "build_scene",
     "obstacle_geom",
-    "parse_scene",
-    "scene_file",
     "table_top_z",
 ]
 
@@ -57,57 +48,6 @@ CUBE_BODY = "cube"
 """The cube's body, with a free joint of the same name (optional)."""
 CUBE_GEOM = "cube"
 """The cube's box geom."""
-
-
-SceneFile = tuple[str, int, int]
-"""A scene file as :func:`scene_file` names it: real path, modification time [ns], size [bytes]."""
-
-
-def scene_file(scene_xml: str | os.PathLike[str]) -> SceneFile:
-    """A scene file's real path, modification time [ns] and size [bytes] (a cache's key)."""
-    path = os.path.realpath(os.fspath(scene_xml))
-    info = os.stat(path)
-    return path, info.st_mtime_ns, info.st_size
-
-
-def _builtin(texture: mujoco.MjsTexture) -> bool:
-    return int(texture.builtin) != int(mujoco.mjtBuiltin.mjBUILTIN_NONE) and not texture.file
-
-
-@functools.lru_cache(maxsize=8)
-def _parsed(stamp: SceneFile) -> mujoco.MjSpec:
-    """The file parsed, its builtin textures replaced by the pixels MuJoCo generates for them."""
-    spec = mujoco.MjSpec.from_file(stamp[0])
-    if not any(_builtin(t) for t in spec.textures):
-        return spec
-    model = spec.copy().compile()
-    for i, texture in enumerate(spec.textures):
-        if _builtin(texture):
-            w, h, c = (int(model.tex_width[i]), int(model.tex_height[i]),
-                       int(model.tex_nchannel[i]))  # fmt: skip
-            adr = int(model.tex_adr[i])
-            texture.builtin = mujoco.mjtBuiltin.mjBUILTIN_NONE
-            texture.width, texture.height, texture.nchannel = w, h, c
-            texture.data = bytes(model.tex_data[adr : adr + w * h * c])
-    return spec
-
-
-def parse_scene(scene_xml: str | os.PathLike[str]) -> mujoco.MjSpec:
-    """A robot's MJCF scene, parsed, for :func:`build_scene` (a fresh spec each call).
-
-    Compiling it gives the model of the file itself, byte for byte (tested),
-    for less: the file is parsed and its builtin textures generated once per
-    process (again if the file's time or size changes; not when only a file it
-    includes does), the textures kept as their pixels (a 512 x 3072 sky box
-    costs ~30 ms per compile to generate), and each call copies that spec.
-
-    Args:
-        scene_xml: The robot's scene file.
-
-    Returns:
-        The parsed scene, a copy of its own.
-    """
-    return _parsed(scene_file(scene_xml)).copy()
 
 
 def table_top_z(spec: mujoco.MjSpec) -> float:

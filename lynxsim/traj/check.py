@@ -6,11 +6,6 @@ grid's largest values of every joint and derivative order, a golden-section
 search finds the true extremes between grid points. The grid is fixed in the
 segment's normalised time, so a shape scaled to its shortest duration meets
 its limits exactly.
-
-Piecewise polynomials of degree 3 or less (Ruckig's, LSPB's, cubic timing's)
-have known extremes; where those, plus a bound far above any rounding, lie
-within half the tolerances, no value the search evaluates can break one, and
-the search is skipped (the verdict is the same, for a fraction of the work).
 """
 
 from __future__ import annotations
@@ -224,8 +219,6 @@ def check_trajectory(
             limit=bound,
         )
 
-    if extremes is None and _clearly_within(traj, bounds):
-        return  # no evaluation of the search below can reach a limit's tolerance
     if extremes is None:
         extremes = []
         for k, segment in enumerate(traj.segments):
@@ -284,88 +277,6 @@ def check_trajectory(
                 peak,
                 side,
             )
-
-
-def _piece_peaks(
-    c: FloatArray, h: FloatArray, duration: FloatArray
-) -> tuple[FloatArray, FloatArray]:
-    """Exact largest ``+x`` and ``-x`` of each derivative of cubic pieces, and their slack.
-
-    Args:
-        c: Ascending coefficients of the pieces, shape (P, 4, n) [rad/s^k].
-        h: The pieces' lengths, shape (P,) [s].
-        duration: The length of each piece's segment, shape (P,) [s].
-
-    Returns:
-        ``peak`` (4, 2, P, n): per order, sign, piece and joint, the largest value
-        at the piece's ends and at the roots of the next derivative inside it
-        (stable quadratic formula; where the order's extremes lie) [rad/s^order];
-        ``slack`` (4, P, n): ``1e-12`` of the order's ``sum |c_k| h^k`` and of its
-        slope bound over its segment's length, far above the rounding of any
-        evaluation of the piece near ``[0, h]`` (a few ``1e-16`` of that sum).
-    """
-    fac = np.array([[1.0, 1.0, 1.0, 1.0], [1.0, 2.0, 3.0, 0.0], [2.0, 6.0, 0.0, 0.0],
-                    [6.0, 0.0, 0.0, 0.0]])  # fmt: skip
-    d = np.stack([c[:, [0, 1, 2, 3]], c[:, [1, 2, 3, 3]], c[:, [2, 3, 3, 3]], c[:, [3, 3, 3, 3]]])
-    d = d * fac[:, None, :, None]  # (4 orders, P, 4, n): derivative r's coefficients
-    a1, a2, a3 = c[:, 1], c[:, 2], c[:, 3]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        # roots of the velocity 3 a3 u^2 + 2 a2 u + a1 (extremes of the position)
-        disc = np.maximum(4.0 * a2 * a2 - 12.0 * a3 * a1, 0.0)
-        q = -0.5 * (2.0 * a2 + np.copysign(np.sqrt(disc), a2))
-        r1 = np.where(a3 != 0.0, q / (3.0 * a3), -a1 / (2.0 * a2))
-        r2 = a1 / q
-        r3 = -a2 / (3.0 * a3)  # root of the acceleration (extreme of the velocity)
-    hh = h[:, None] * np.ones_like(a1)
-    points = [np.zeros_like(a1), hh, r1, r2, r3]
-    peak = np.full((4, 2) + a1.shape, -np.inf)
-    for u in points:
-        u = np.where(np.isfinite(u), np.clip(u, 0.0, hh), 0.0)
-        value = d[:, :, 3]
-        for k in (2, 1, 0):
-            value = value * u + d[:, :, k]
-        peak[:, 0] = np.maximum(peak[:, 0], value)
-        peak[:, 1] = np.maximum(peak[:, 1], -value)
-    powers = h[:, None] ** np.arange(4.0)  # (P, 4)
-    size = np.einsum("rpkj,pk->rpj", np.abs(d), powers)
-    slope = np.einsum(
-        "rpkj,pk->rpj", np.abs(d[:, :, 1:]) * np.arange(1.0, 4.0)[:, None], powers[:, :3]
-    )
-    return peak, 1e-12 * (size + (duration[:, None] + 1.0) * slope)
-
-
-def _clearly_within(traj: Trajectory, bounds: FloatArray) -> bool:
-    """Whether no value the grid search evaluates can break a range or limit's tolerance.
-
-    For a trajectory of piecewise polynomials of degree 3 or less (what Ruckig,
-    LSPB and cubic timing give) the extremes of every derivative are known
-    exactly (:func:`_piece_peaks`); every value :func:`check_trajectory`'s grid
-    and golden-section search evaluates is the polynomial at a time in its
-    piece, so at most such an extreme plus its rounding. Where those lie within
-    half the tolerances the search cannot raise, and is skipped; elsewhere (or
-    for other segments, or limits that are not positive and finite) it runs.
-    """
-    from lynxsim.traj.trajectory import PolynomialSegment  # the import cycle (see check_trajectory)
-
-    orders = (0, *traj.kind.limited_orders)
-    if not np.isfinite(bounds[list(orders)]).all() or not (bounds[list(orders[1:])] > 0.0).all():
-        return False
-    parts, lengths, durations = [], [], []
-    for segment in traj.segments:
-        if not isinstance(segment, PolynomialSegment) or segment.coefficients.shape[1] > 4:
-            return False
-        c = segment.coefficients
-        parts.append(np.concatenate([c, np.zeros((c.shape[0], 4 - c.shape[1], c.shape[2]))], 1))
-        lengths.append(np.diff(segment.breaks))
-        durations.append(np.full(c.shape[0], segment.duration))
-    h = np.concatenate(lengths)
-    peak, slack = _piece_peaks(np.concatenate(parts), h, np.concatenate(durations))
-    top = (peak + slack[:, None]).max(axis=2)  # (4, 2, n)
-    if not np.isfinite(top).all() or (top[0] - bounds[0] > 0.5 * LIMIT_TOL).any():
-        return False
-    return all(
-        not (top[order] > bounds[order] * (1.0 + 0.5 * LIMIT_RTOL)).any() for order in orders[1:]
-    )
 
 
 def _bounds(traj: Trajectory) -> FloatArray:

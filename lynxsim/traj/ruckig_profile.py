@@ -111,23 +111,18 @@ def profile_segment(trajectory: ruckig.Trajectory) -> PolynomialSegment:
     inner = inner[(inner > _BREAK_TOL) & (inner < duration - _BREAK_TOL)]
     inner = inner[np.diff(inner, prepend=-np.inf) > _BREAK_TOL]
     breaks = np.concatenate([[0.0], inner, [duration]])
+    coefficients = np.empty((breaks.size - 1, 4, len(profiles)))
     middle = 0.5 * (breaks[:-1] + breaks[1:])  # picks the phase a piece lies in, robustly
-    # every joint at once: the phase of a piece is how many phase starts lie at or
-    # before its middle (a search in each joint's sorted starts), less one
-    phase = np.clip((starts[:, None, :] <= middle[None, :, None]).sum(axis=2) - 1, 0, 6)
-    joint = np.arange(len(profiles))[:, None]  # (dof, P) indices below
-    u = breaks[None, :-1] - starts[joint, phase]
-    jk = jerk[joint, phase]
-    ak = acc[joint, phase]
-    vk = vel[joint, phase]
-    coefficients = np.stack(
-        [
-            pos[joint, phase] + u * (vk + u * (ak / 2 + u * jk / 6)),
-            vk + u * (ak + u * jk / 2),
-            (ak + u * jk) / 2,
-            jk / 6,
-        ]
-    ).transpose(2, 0, 1)  # (P, 4, dof)
+    for j in range(len(profiles)):
+        phase = np.clip(np.searchsorted(starts[j], middle, side="right") - 1, 0, 6)
+        u = breaks[:-1] - starts[j, phase]
+        jk = jerk[j, phase]
+        ak = acc[j, phase]
+        vk = vel[j, phase]
+        coefficients[:, 0, j] = pos[j, phase] + u * (vk + u * (ak / 2 + u * jk / 6))
+        coefficients[:, 1, j] = vk + u * (ak + u * jk / 2)
+        coefficients[:, 2, j] = (ak + u * jk) / 2
+        coefficients[:, 3, j] = jk / 6
     return PolynomialSegment(breaks, coefficients)
 
 

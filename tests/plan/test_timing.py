@@ -182,33 +182,3 @@ def test_a_screening_world_gives_the_same_timed_motion_for_fewer_exact_checks(mo
     t = np.linspace(0.0, plain.trajectory.duration, 501)
     assert np.array_equal(screened.trajectory.sample(t).q, plain.trajectory.sample(t).q)
     assert 0 < Counting.asked < sum(s.samples for s in plain.segments)
-
-
-def test_an_exact_world_asked_up_to_levels_gives_the_same_timed_motion(motion):
-    result, _ = motion
-    paths = [s.path for s in result.segments]
-    grasped = [s.grasped for s in result.segments]
-
-    class Leveled:
-        """BALL, answering ``min(clearance, level)`` where asked with levels."""
-
-        n_joints = 5
-
-        def __init__(self) -> None:
-            self.levels: list[np.ndarray] = []
-
-        def clearance(self, q: np.ndarray, *, grasped: bool) -> np.ndarray:
-            return BALL.clearance(q, grasped=grasped)
-
-        def clearance_below(self, q: np.ndarray, *, grasped: bool, level: np.ndarray) -> np.ndarray:
-            self.levels.append(level)
-            return np.minimum(BALL.clearance(q, grasped=grasped), level)
-
-    plain = time_paths(paths, grasped, BALL, lipschitz=LIPSCHITZ, margin_m=MARGIN_M,
-                       bounds=ARM_BOUNDS, limits=ARM_LIMITS, screen=_Lowered())  # fmt: skip
-    world = Leveled()
-    leveled = time_paths(paths, grasped, world, lipschitz=LIPSCHITZ, margin_m=MARGIN_M,
-                         bounds=ARM_BOUNDS, limits=ARM_LIMITS, screen=_Lowered())  # fmt: skip
-    assert leveled.segments == plain.segments  # minimum, bound, samples, stops: all exact
-    levels = np.concatenate(world.levels)
-    assert np.isfinite(levels).any()  # some samples were asked only up to a level

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import os
-import shutil
 
 import mujoco
 import numpy as np
@@ -29,7 +27,6 @@ from lynxsim.sim.arm.model import (
     load_arm_spec,
     table_top_z,
 )
-from lynxsim.sim.scene_build import build_scene, parse_scene
 from tests.helpers import assert_close
 
 VIA_POINTS_MM_DEG = (
@@ -284,46 +281,3 @@ def test_named_camera_renders_a_non_blank_frame(scene_model, scene_data, camera)
         frame = renderer.render()
     assert frame.shape == (120, 160, 3)
     assert frame.std() > RENDER_STD_MIN
-
-
-def _model_bytes(model: mujoco.MjModel) -> bytes:
-    buffer = np.zeros(mujoco.mj_sizeModel(model), dtype=np.uint8)
-    mujoco.mj_saveModel(model, None, buffer)
-    return buffer.tobytes()
-
-
-def test_parsed_scene_compiles_to_the_files_model_byte_for_byte(tmp_path):
-    # parse_scene keeps the builtin textures as their generated pixels: the same model.
-    path = str(model_path(SCENE_XML))
-    spec = mujoco.MjSpec.from_file(path)
-    assert any(int(t.builtin) != int(mujoco.mjtBuiltin.mjBUILTIN_NONE) for t in spec.textures)
-    assert _model_bytes(parse_scene(path).compile()) == _model_bytes(spec.compile())
-    moved = Scene((Sphere("ball", (0.2, -0.1, 0.1), 0.03),), TABLE, REPORT_SCENE.cube)
-    built = build_scene(parse_scene(path), moved, owner="arm").compile()
-    assert _model_bytes(built) == _model_bytes(
-        build_scene(mujoco.MjSpec.from_file(path), moved, owner="arm").compile()
-    )
-    # An edited file (its time or size changes) is parsed again.
-    copied = tmp_path / "lynx_arm"
-    shutil.copytree(os.path.dirname(path), copied)
-    scene_xml = copied / os.path.basename(path)
-    before = parse_scene(scene_xml).compile()
-    scene_xml.write_text(
-        scene_xml.read_text().replace('width="300" height="300"', 'width="64" height="64"')
-    )
-    after = parse_scene(scene_xml).compile()
-    assert int(before.tex_width.max(initial=0)) == 512
-    assert sorted(after.tex_width.tolist()) == [
-        64,
-        512,
-    ]
-
-
-def test_loaded_scenes_are_copies_of_their_own():
-    first = load_arm_scene(REPORT_SCENE)
-    first.geom_pos[:] = 1.0
-    first.opt.timestep = 1.0
-    second = load_arm_scene(REPORT_SCENE)
-    assert second is not first
-    assert second.opt.timestep == 0.002
-    assert not np.all(second.geom_pos == 1.0)

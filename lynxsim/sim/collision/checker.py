@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -18,16 +18,8 @@ import numpy.typing as npt
 
 from lynxsim.errors import InvalidInputError, NonFiniteInputError
 from lynxsim.inputs import finite_array, positive_number, real_array
-from lynxsim.sim.collision.clearance import (
-    CLEARANCE_CAP_M,
-    ClearanceGeometry,
-    clearances_of_states,
-    obstacle_boxes,
-)
+from lynxsim.sim.collision.clearance import CLEARANCE_CAP_M, clearances_of_states, obstacle_boxes
 from lynxsim.sim.collision.groups import CollisionGroups
-
-if TYPE_CHECKING:  # imported where first used: it imports the cover, which imports this
-    from lynxsim.sim.collision.nearest_bounds import NearestBounds
 
 __all__ = ["CollisionCheck", "CollisionChecker"]
 
@@ -122,7 +114,6 @@ class CollisionChecker:
         self._support_pairs = frozenset(
             pair for r in robot for s in support for pair in ((r, s), (s, r))
         )
-        self._nearest: NearestBounds | None = None  # built at the first leveled query
 
     def _payload_frames(
         self, attach: tuple[int, int] | None
@@ -207,12 +198,7 @@ class CollisionChecker:
             return self._check(states, grasped)
 
     def min_clearance(
-        self,
-        q: npt.ArrayLike,
-        *,
-        grasped: bool = False,
-        cap: float | None = None,
-        below: npt.ArrayLike | None = None,
+        self, q: npt.ArrayLike, *, grasped: bool = False, cap: float | None = None
     ) -> FloatArray:
         """Smallest clearance to any obstacle of each joint vector; ``-inf`` on a hit.
 
@@ -227,15 +213,9 @@ class CollisionChecker:
             q: Joint vectors, (N, n) or (n,) [rad].
             grasped: Whether the payload is held at the attach site.
             cap: Clearances of ``cap`` or more read as ``cap`` [m] (default: the checker's).
-            below: A level per vector, (N,) [m]: a clearance above its level reads
-                as the level (a lower bound, found with less work: the compiled
-                :class:`~lynxsim.sim.collision.nearest_bounds.NearestBounds` rule
-                out a vector, and exact distances stop at the level); one at or
-                below it is the same number as without a level. Contacts read as
-                ``-inf`` as ever.
 
         Returns:
-            Shape (N,) [m]: ``min(clearance, cap, below)``.
+            Shape (N,) [m].
 
         Raises:
             InvalidInputError: Wrong shape, ``grasped`` without an attach point, or
@@ -244,63 +224,41 @@ class CollisionChecker:
         """
         states = self._states(q, grasped)
         limit = self._cap if cap is None else positive_number(cap, "cap", "m")
-        level = None
-        if below is not None:
-            level = np.minimum(real_array(below, "below").astype(float), limit)
-            if level.shape != (len(states),) or np.isnan(level).any():
-                raise InvalidInputError(
-                    f"below must be {len(states)} levels (not NaN), got shape {level.shape}"
-                )
         with self._lock:
-            return self._min_clearance(states, grasped, limit, level)
+            return self._min_clearance(states, grasped, limit)
 
-    def _min_clearance(
-        self, states: FloatArray, grasped: bool, limit: float, level: FloatArray | None = None
-    ) -> FloatArray:
+    def _min_clearance(self, states: FloatArray, grasped: bool, limit: float) -> FloatArray:
         m, d, g = self.model, self._data, self.groups
         hits = self._obstacle_pairs | self._self_pairs | self._support_pairs
         carried = np.flatnonzero(g.carried)
         obstacles = g.obstacle_geoms
         count = len(states)
-        out = np.full(count, limit) if level is None else level.copy()
+        out = np.full(count, limit)
         posed = np.empty_like(states)
         xpos = np.empty((count, len(carried), 3))
-        xmat = np.empty((count, len(carried), 9)) if level is not None else xpos
-        qpos, geom_xpos, geom_xmat = d.qpos, d.geom_xpos, d.geom_xmat  # views, made once
         for k in range(count):  # pass 1: contacts, and where every geom is
             if any(pair in hits for pair in self._touching(states[k], grasped)):
                 out[k] = -np.inf
-            posed[k] = qpos  # the payload held, if it is
-            xpos[k] = geom_xpos[carried]
-            if level is not None:
-                xmat[k] = geom_xmat[carried]
+            posed[k] = d.qpos  # the payload held, if it is
+            xpos[k] = d.geom_xpos[carried]
         if len(obstacles) == 0 or len(carried) == 0 or count == 0:
-            return out
-        start = np.full(count, limit) if level is None else level
-        ask = out > -np.inf
-        if level is not None:  # a vector whose bound reaches its level keeps the level
-            near = self._bounds().nearest(xpos, xmat, np.full(len(obstacles), level.max()))
-            ask &= near.min(axis=1) < level
-        rows = np.flatnonzero(ask)
-        if rows.size == 0:
             return out
         # Bounding spheres against the obstacles' boxes: a few array operations
         # for the whole batch (the planner asks small batches, many times).
         centre, half = obstacle_boxes(m, d, g)
-        outside = np.abs(xpos[rows][:, :, None, :] - centre) - half
-        bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (R, r, m)
+        outside = np.abs(xpos[:, :, None, :] - centre) - half
+        bounds = np.sqrt(np.square(np.maximum(outside, 0.0)).sum(axis=-1))  # (N, r, m)
         bounds -= np.asarray(m.geom_rbound)[carried][None, :, None]
-        flat = bounds.reshape(len(rows), -1)  # (R, r * m)
+        flat = bounds.reshape(count, -1)  # (N, r * m)
         order = np.argsort(flat, axis=1)
         low = np.take_along_axis(flat, order, axis=1)
         pairs = len(obstacles)
         geoms, targets = carried.tolist(), obstacles.tolist()
-        for r in np.flatnonzero(low[:, 0] < start[rows]).tolist():
-            k = int(rows[r])
+        for k in np.flatnonzero((out > -np.inf) & (low[:, 0] < limit)).tolist():
             d.qpos[:] = posed[k]  # pass 2: exact distances of the pairs that may be near
             mujoco.mj_kinematics(m, d)
-            best = float(start[k])
-            for index, bound in zip(order[r].tolist(), low[r].tolist(), strict=True):
+            best = limit
+            for index, bound in zip(order[k].tolist(), low[k].tolist(), strict=True):
                 if bound >= best:
                     break
                 i, j = divmod(index, pairs)
@@ -308,18 +266,6 @@ class CollisionChecker:
                 best = min(best, dist)
             out[k] = best
         return out
-
-    def _bounds(self) -> NearestBounds:
-        """The compiled lower bounds of each obstacle's clearance (built once, at the base)."""
-        from lynxsim.sim.collision.nearest_bounds import NearestBounds  # see the imports
-
-        if self._nearest is None:
-            d = self._data
-            d.qpos[:] = self._base
-            mujoco.mj_kinematics(self.model, d)
-            geometry = ClearanceGeometry.of(self.model, d, self.groups)
-            self._nearest = NearestBounds(self.model, d, geometry, self._cap)
-        return self._nearest
 
     def _states(self, q: npt.ArrayLike, grasped: bool) -> FloatArray:
         """Whole states of joint vectors, (N, nq), the rest from the base state."""

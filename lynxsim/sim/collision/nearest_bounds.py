@@ -4,10 +4,7 @@
 the lower bounds that :func:`lynxsim.sim.collision.clearance._bounds` puts on
 the distance of each carried geom to the obstacle (a geom's distance from the
 obstacle's own shape at its centre, less its extent towards the obstacle),
-compiled by numba with no Python per state. A geom's bound of one state is
-carried to the next states of a chunk, less how far the geom moved (its
-centre's shift plus its bounding radius times its axes' turn), while that
-still clears the level; only then is it computed again. A playback uses it to decide
+compiled by numba with no Python per state. A playback uses it to decide
 which states may hold an obstacle's smallest clearance
 (:class:`~lynxsim.sim.stepping.records.SensedRecorder`); the exact distances
 stay MuJoCo's. The arithmetic is the same as the NumPy bounds but not
@@ -28,7 +25,7 @@ from lynxsim.errors import InvalidInputError
 from lynxsim.sim.collision.clearance import ClearanceGeometry
 from lynxsim.sim.cover.spheres import cover_geom
 
-__all__ = ["BOUND_TOLERANCE_M", "NearestBounds", "geom_bound"]
+__all__ = ["BOUND_TOLERANCE_M", "NearestBounds"]
 
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
@@ -36,14 +33,6 @@ IntArray = npt.NDArray[np.intp]
 BOUND_TOLERANCE_M = 1e-6
 """Taken off every computed bound [m]: more than the rounding of the bounds, and than
 any amount by which MuJoCo's distance may fall short of the true one."""
-
-_KEPT_ABOVE_M = 0.01
-"""A geom's bound that is kept for later states is tightened up to this far above
-the level it must clear [m] (it then lasts while the geom moves less than that)."""
-
-_MOVED_ROUNDING_M = 1e-9
-"""Taken off a kept bound beside how far the geom moved [m]: more than the rounding
-of that distance."""
 
 _BOX, _CYLINDER, _SPHERE = 6, 5, 2
 """MuJoCo's geom types box, cylinder and sphere (``mjtGeom``), as plain ints."""
@@ -75,7 +64,7 @@ def _sdf(kind, s0, s1, s2, rbound, x, y, z):  # type: ignore[no-untyped-def]  # 
 
 
 @njit(cache=True, error_model="numpy")
-def geom_bound(  # type: ignore[no-untyped-def]  # numba
+def _bound(  # type: ignore[no-untyped-def]  # numba
     xpos,
     xmat,
     s,
@@ -170,67 +159,86 @@ def _nearest(  # type: ignore[no-untyped-def]  # numba
     below,
     out,
 ):
-    r = xpos.shape[1]
-    kept = np.empty(r)  # per geom, a bound of an earlier state of the chunk (or NaN)
-    kept_pos, kept_mat = np.empty((r, 3)), np.empty((r, 9))
     for j in range(kind.shape[0]):
-        kept[:] = np.nan
         for s in range(xpos.shape[0]):
             low = np.inf
-            for g in range(r):  # the geoms fixed to the world first: exact
+            for g in range(xpos.shape[1]):  # the geoms fixed to the world first: exact
                 if not math.isnan(fixed[g, j]):
                     low = min(low, fixed[g, j])
-            for g in range(r):
-                if not math.isnan(fixed[g, j]):
-                    continue
-                level = min(low, below[j])
-                # the bounding spheres here too: most geoms end at them, with no call
-                dx = xpos[s, g, 0] - pos[j, 0]
-                dy = xpos[s, g, 1] - pos[j, 1]
-                dz = xpos[s, g, 2] - pos[j, 2]
-                weak = math.sqrt(dx * dx + dy * dy + dz * dz) - rbound[j] - reach[g, 1]
-                if weak - BOUND_TOLERANCE_M >= level:
-                    low = min(low, weak - BOUND_TOLERANCE_M)
-                    continue
-                if not math.isnan(kept[g]):
-                    # no point of the geom moved more than its centre did plus its
-                    # bounding radius times how far its axes turned (Frobenius norm)
-                    ex = xpos[s, g, 0] - kept_pos[g, 0]
-                    ey = xpos[s, g, 1] - kept_pos[g, 1]
-                    ez = xpos[s, g, 2] - kept_pos[g, 2]
-                    turn = 0.0
-                    for a in range(9):
-                        turn += (xmat[s, g, a] - kept_mat[g, a]) ** 2
-                    moved = math.sqrt(ex * ex + ey * ey + ez * ez) + math.sqrt(turn) * reach[g, 1]
-                    carried = kept[g] - moved - _MOVED_ROUNDING_M
-                    if carried >= level:
-                        low = min(low, carried)
+            for g in range(xpos.shape[1]):
+                if math.isnan(fixed[g, j]):
+                    level = min(low, below[j])
+                    # the bounding spheres here too: most geoms end at them, with no call
+                    dx = xpos[s, g, 0] - pos[j, 0]
+                    dy = xpos[s, g, 1] - pos[j, 1]
+                    dz = xpos[s, g, 2] - pos[j, 2]
+                    weak = math.sqrt(dx * dx + dy * dy + dz * dz) - rbound[j] - reach[g, 1]
+                    if weak - BOUND_TOLERANCE_M >= level:
+                        low = min(low, weak - BOUND_TOLERANCE_M)
                         continue
-                b = geom_bound(
-                    xpos,
-                    xmat,
-                    s,
-                    g,
-                    level + _KEPT_ABOVE_M,
-                    extent,
-                    reach,
-                    first,
-                    centres,
-                    radii,
-                    fixed,
-                    kind,
-                    size,
-                    rbound,
-                    pos,
-                    rot,
-                    j,
-                )
-                if b >= level:  # kept for the next states while the geom moves little
-                    kept[g] = b
-                    kept_pos[g, :] = xpos[s, g, :]
-                    kept_mat[g, :] = xmat[s, g, :]
-                low = min(low, b)
+                    b = _bound(
+                        xpos,
+                        xmat,
+                        s,
+                        g,
+                        level,
+                        extent,
+                        reach,
+                        first,
+                        centres,
+                        radii,
+                        fixed,
+                        kind,
+                        size,
+                        rbound,
+                        pos,
+                        rot,
+                        j,
+                    )
+                    low = min(low, b)
             out[s, j] = low
+
+
+@njit(cache=True, error_model="numpy")
+def _per_geom(  # type: ignore[no-untyped-def]  # numba
+    xpos,
+    xmat,
+    s,
+    level,
+    extent,
+    reach,
+    first,
+    centres,
+    radii,
+    fixed,
+    kind,
+    size,
+    rbound,
+    pos,
+    rot,
+    j,
+    out,
+):
+    for g in range(xpos.shape[1]):
+        out[g] = _bound(
+            xpos,
+            xmat,
+            s,
+            g,
+            level,
+            extent,
+            reach,
+            first,
+            centres,
+            radii,
+            fixed,
+            kind,
+            size,
+            rbound,
+            pos,
+            rot,
+            j,
+        )
 
 
 class NearestBounds:
@@ -280,11 +288,7 @@ class NearestBounds:
             np.ascontiguousarray(geometry.rot, dtype=f64),
         )
         self.obstacles = len(obstacles)
-
-    @property
-    def arrays(self) -> tuple[npt.NDArray[np.float64 | np.int64], ...]:
-        """What :func:`geom_bound` takes after ``level``: the compiled geometry, in order."""
-        return (*self._geo, *self._spheres, *self._obstacles)
+        self._geoms = len(carried)
 
     def nearest(self, xpos: FloatArray, xmat: FloatArray, below: FloatArray) -> FloatArray:
         """Per state and obstacle, a lower bound of its clearance [m], (N, m).
@@ -300,4 +304,15 @@ class NearestBounds:
         """
         out = np.empty((len(xpos), self.obstacles))
         _nearest(xpos, xmat, *self._geo, *self._spheres, *self._obstacles, below, out)
+        return out
+
+    def per_geom(
+        self, xpos: FloatArray, xmat: FloatArray, s: int, j: int, level: float
+    ) -> FloatArray:
+        """Bound of each carried geom of state ``s`` to obstacle ``j`` [m], (r,).
+
+        Tightened while below ``level`` [m].
+        """
+        out = np.empty(self._geoms)
+        _per_geom(xpos, xmat, s, level, *self._geo, *self._spheres, *self._obstacles, j, out)
         return out

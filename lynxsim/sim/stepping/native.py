@@ -118,27 +118,16 @@ def native_run(
     state = np.empty(mujoco.mj_stateSize(model, full))
     base = np.array(data.ctrl)
 
-    stepper = native.Rollout(nthread=0)  # steps in the calling thread
-    models, datas = [model], [data]
-
     def play(controls: FloatArray) -> tuple[FloatArray, FloatArray]:
-        # every array made here in the shapes rollout wants: its checks and tiling
-        # cost about a millisecond a call in Python
-        u = whole_controls(base, commands.ctrl_adr, controls)[None]
+        u = whole_controls(base, commands.ctrl_adr, controls)
         mujoco.mj_getState(model, data, state, full)
-        states = np.empty((1, len(controls), len(state)))
-        sensordata = np.empty((1, len(controls), model.nsensordata))
-        stepper.rollout(
-            models,
-            datas,
-            state[None],
-            u,
-            control_spec=int(mujoco.mjtState.mjSTATE_CTRL),
-            skip_checks=True,
-            nstep=len(controls),
-            initial_warmstart=np.array(data.qacc_warmstart)[None],
-            state=states,
-            sensordata=sensordata,
+        states, sensordata = native.rollout(
+            model,
+            data,
+            state,
+            u[None],
+            control_spec=mujoco.mjtState.mjSTATE_CTRL,
+            initial_warmstart=np.array(data.qacc_warmstart),
         )
         return states[0], sensordata[0]
 

@@ -243,10 +243,21 @@ class SensedRecorder:
         record.time[rows], record.qpos[rows] = chunk.time, chunk.qpos
         record.force[rows], record.tool[rows] = sensors.force, sensors.tool
         qpos, kinematics, collision = data.qpos, mujoco.mj_kinematics, mujoco.mj_collision
+        posed = -1  # the chunk's state that data holds
         for k in np.flatnonzero(sensors.gate).tolist():
             qpos[:] = chunk.qpos[k]
             kinematics(model, data)
             collision(model, data)
             record.add_contacts(start + k, data)
-        minima.add(start, sensors.geom_xpos, sensors.geom_xmat)
+            posed = k
+
+        def pose(k: int) -> mujoco.MjData:
+            nonlocal posed
+            if k != posed:
+                qpos[:] = chunk.qpos[k]
+                kinematics(model, data)
+                posed = k
+            return data
+
+        minima.add(start, sensors.geom_xpos, sensors.geom_xmat, pose)
         self._done = end
